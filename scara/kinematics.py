@@ -1,0 +1,316 @@
+"""Kinematics of the SCARA arm (SPEC section 2): DH table, link frames, ``T_e^b``, ``x_e``, ``J_A``,
+``Jdot_A``, closed-form inverse kinematics and reachability.
+
+The scalar kernels (``*_kernel``) are compiled by the project decorator and write into arrays passed by
+the caller; the later chapters' compiled loops (CLIK, simulation) call them directly. The public
+functions check their inputs and wrap the kernels.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._compile import kernel
+from .errors import ScaraError, UnreachableError, as_array
+from .params import ScaraParams
+
+__all__ = [
+    "BASE_TRANSFORM",
+    "dh_table",
+    "dh_matrix",
+    "link_frames",
+    "fkine",
+    "pose",
+    "jacobian",
+    "jacobian_dot",
+    "ikine",
+    "is_reachable",
+    "check_reachable",
+    "pose_kernel",
+    "jacobian_kernel",
+    "jacobian_dot_kernel",
+    "ikine_kernel",
+]
+
+_DEFAULT = ScaraParams()
+
+
+def _params(p):
+    if p is None:
+        return _DEFAULT
+    if not isinstance(p, ScaraParams):
+        raise ScaraError(f"p must be a ScaraParams object or None, got {type(p).__name__}")
+    return p
+
+
+def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
+    """``A_0^b`` (SPEC section 2): frame 0 hangs at height ``d0`` with its z axis pointing down."""
+    p = _params(p)
+    return np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, p.d0], [0, 0, 0, 1.0]])
+
+
+# --------------------------------------------------------------------------------------------------
+# compiled scalar kernels
+# --------------------------------------------------------------------------------------------------
+@kernel
+def pose_kernel(q, a1, a2, d0, out):
+    """``x_e = k(q) = [p_x, p_y, p_z, phi]`` (SPEC section 2) written into ``out`` (4,)."""
+    t12 = q[0] + q[1]
+    out[0] = a1 * math.cos(q[0]) + a2 * math.cos(t12)
+    out[1] = -(a1 * math.sin(q[0]) + a2 * math.sin(t12))
+    out[2] = d0 - q[2]
+    out[3] = t12 + q[3]
+
+
+@kernel
+def jacobian_kernel(q, a1, a2, out):
+    """Analytic Jacobian ``J_A = dx_e/dq`` (SPEC section 2) written into ``out`` (4, 4)."""
+    s1 = math.sin(q[0])
+    c1 = math.cos(q[0])
+    s12 = math.sin(q[0] + q[1])
+    c12 = math.cos(q[0] + q[1])
+    for i in range(4):
+        for j in range(4):
+            out[i, j] = 0.0
+    out[0, 0] = -(a1 * s1 + a2 * s12)
+    out[0, 1] = -a2 * s12
+    out[1, 0] = -(a1 * c1 + a2 * c12)
+    out[1, 1] = -a2 * c12
+    out[2, 2] = -1.0
+    out[3, 0] = 1.0
+    out[3, 1] = 1.0
+    out[3, 3] = 1.0
+
+
+@kernel
+def jacobian_dot_kernel(q, qd, a1, a2, out):
+    """Time derivative ``Jdot_A(q, qd)`` of the analytic Jacobian, written into ``out`` (4, 4).
+
+    Differentiating SPEC section 2 entry by entry, with ``w1 = qd1`` and ``w12 = qd1 + qd2``:
+    ``d/dt J11 = -(a1 c1 w1 + a2 c12 w12)``, ``d/dt J12 = -a2 c12 w12``,
+    ``d/dt J21 = a1 s1 w1 + a2 s12 w12``, ``d/dt J22 = a2 s12 w12``; every other entry is constant.
+    """
+    s1 = math.sin(q[0])
+    c1 = math.cos(q[0])
+    s12 = math.sin(q[0] + q[1])
+    c12 = math.cos(q[0] + q[1])
+    w1 = qd[0]
+    w12 = qd[0] + qd[1]
+    for i in range(4):
+        for j in range(4):
+            out[i, j] = 0.0
+    out[0, 0] = -(a1 * c1 * w1 + a2 * c12 * w12)
+    out[0, 1] = -a2 * c12 * w12
+    out[1, 0] = a1 * s1 * w1 + a2 * s12 * w12
+    out[1, 1] = a2 * s12 * w12
+
+
+@kernel
+def ikine_kernel(x, a1, a2, d0, elbow, out):
+    """Closed-form inverse kinematics (SPEC section 2) written into ``out`` (4,).
+
+    With ``y' = -p_y`` the horizontal problem is the planar two-link arm:
+    ``c2 = (p_x^2 + y'^2 - a1^2 - a2^2) / (2 a1 a2)``, ``s2 = elbow sqrt(1 - c2^2)``,
+    ``theta2 = atan2(s2, c2)``, ``theta1 = atan2(y', p_x) - atan2(a2 s2, a1 + a2 c2)``,
+    ``d3 = d0 - p_z``, ``theta4 = phi - theta1 - theta2``.
+    Returns 0 on success, 1 when the point is outside the annulus, 2 when ``d3`` is outside ``[0, d0]``.
+    The caller checks the code; ``out`` is left unchanged on failure.
+    """
+    px = x[0]
+    py = -x[1]
+    r2 = px * px + py * py
+    c2 = (r2 - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
+    tol = 1e-12
+    if c2 > 1.0 + tol or c2 < -1.0 - tol:
+        return 1
+    d3 = d0 - x[2]
+    if d3 < -tol or d3 > d0 + tol:
+        return 2
+    if c2 > 1.0:
+        c2 = 1.0
+    elif c2 < -1.0:
+        c2 = -1.0
+    s2 = elbow * math.sqrt(1.0 - c2 * c2)
+    t2 = math.atan2(s2, c2)
+    t1 = math.atan2(py, px) - math.atan2(a2 * s2, a1 + a2 * c2)
+    if t1 > math.pi:
+        t1 -= 2.0 * math.pi
+    elif t1 <= -math.pi:
+        t1 += 2.0 * math.pi
+    out[0] = t1
+    out[1] = t2
+    out[2] = d3
+    out[3] = x[3] - t1 - t2
+    return 0
+
+
+# --------------------------------------------------------------------------------------------------
+# public functions
+# --------------------------------------------------------------------------------------------------
+def dh_table(q=None, p: ScaraParams | None = None) -> np.ndarray:
+    """The DH table (SPEC section 2) as rows ``(a_i, alpha_i, d_i, theta_i)``, shape (4, 4).
+
+    With ``q`` the joint variables are filled in; without it they are zero.
+    """
+    p = _params(p)
+    q = np.zeros(4) if q is None else as_array(q, "q", (4,))
+    return np.array([
+        [p.a1, 0.0, 0.0, q[0]],
+        [p.a2, 0.0, 0.0, q[1]],
+        [0.0, 0.0, q[2], 0.0],
+        [0.0, 0.0, 0.0, q[3]],
+    ])
+
+
+def dh_matrix(a: float, alpha: float, d: float, theta: float) -> np.ndarray:
+    """Homogeneous transform ``A_i^{i-1}`` of one DH row (Siciliano et al., eq. 2.52), shape (4, 4)."""
+    ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+    return np.array([
+        [ct, -st * ca, st * sa, a * ct],
+        [st, ct * ca, -ct * sa, a * st],
+        [0.0, sa, ca, d],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+
+
+def link_frames(q, p: ScaraParams | None = None) -> np.ndarray:
+    """Every frame of the arm in the base frame, for drawing: ``[A_0^b, T_1^b, T_2^b, T_3^b, T_4^b, T_e^b]``.
+
+    Computed as the running product of the DH matrices of :func:`dh_table`, shape (6, 4, 4).
+    """
+    p = _params(p)
+    q = as_array(q, "q", (4,))
+    frames = [BASE_TRANSFORM(p)]
+    for row in dh_table(q, p):
+        frames.append(frames[-1] @ dh_matrix(*row))
+    frames.append(frames[-1].copy())  # A_e^4 = I
+    return np.array(frames)
+
+
+def pose(q, p: ScaraParams | None = None) -> np.ndarray:
+    """Operational vector ``x_e = [p_x, p_y, p_z, phi]`` (SPEC section 2).
+
+    ``q`` has shape (4,) or (N, 4); the result has the same shape. Units m and rad.
+
+    >>> pose([0.0, 0.0, 0.5, 0.0])
+    array([1. , -0. , 0.5, 0. ])
+    """
+    p = _params(p)
+    q = as_array(q, "q", (4,), allow_batch=True)
+    if q.ndim == 1:
+        out = np.empty(4)
+        pose_kernel(q, p.a1, p.a2, p.d0, out)
+        return out
+    t12 = q[:, 0] + q[:, 1]
+    return np.column_stack([
+        p.a1 * np.cos(q[:, 0]) + p.a2 * np.cos(t12),
+        -(p.a1 * np.sin(q[:, 0]) + p.a2 * np.sin(t12)),
+        p.d0 - q[:, 2],
+        t12 + q[:, 3],
+    ])
+
+
+def fkine(q, p: ScaraParams | None = None) -> np.ndarray:
+    """Direct kinematics ``T_e^b(q)`` (SPEC section 2) in closed form, shape (4, 4).
+
+    ``R_e^b = [[c, -s, 0], [-s, -c, 0], [0, 0, -1]]`` with ``c, s = cos phi, sin phi`` and the position of
+    :func:`pose`.
+    """
+    x = pose(as_array(q, "q", (4,)), p)
+    c, s = math.cos(x[3]), math.sin(x[3])
+    return np.array([[c, -s, 0.0, x[0]], [-s, -c, 0.0, x[1]], [0.0, 0.0, -1.0, x[2]], [0.0, 0.0, 0.0, 1.0]])
+
+
+def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
+    """Analytic Jacobian ``J_A(q) = dx_e/dq`` (SPEC section 2), shape (4, 4).
+
+    ``det J_A = a1 a2 sin(theta2)``: singular with the arm stretched or folded.
+    """
+    p = _params(p)
+    q = as_array(q, "q", (4,))
+    out = np.empty((4, 4))
+    jacobian_kernel(q, p.a1, p.a2, out)
+    return out
+
+
+def jacobian_dot(q, qd, p: ScaraParams | None = None) -> np.ndarray:
+    """``Jdot_A(q, qd)``, the time derivative of :func:`jacobian` along a motion, shape (4, 4)."""
+    p = _params(p)
+    q = as_array(q, "q", (4,))
+    qd = as_array(qd, "qd", (4,))
+    out = np.empty((4, 4))
+    jacobian_dot_kernel(q, qd, p.a1, p.a2, out)
+    return out
+
+
+def _unreachable_message(x, code, p, label="point"):
+    r = math.hypot(x[0], x[1])
+    if code == 1:
+        return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: its distance from the "
+                f"joint-1 axis r = {r:.6g} m is outside the annulus |a1 - a2| = {p.r_min:g} m <= r <= "
+                f"a1 + a2 = {p.r_max:g} m")
+    d3 = p.d0 - x[2]
+    return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: p_z = {x[2]:.6g} m needs "
+            f"d3 = d0 - p_z = {d3:.6g} m, outside the stroke 0 <= d3 <= d0 = {p.d0:g} m")
+
+
+def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
+    """Closed-form inverse kinematics: the joint vector ``q`` with ``pose(q) == x`` (SPEC section 2).
+
+    Parameters
+    ----------
+    x : array (4,) or (N, 4)
+        ``[p_x, p_y, p_z, phi]`` in m and rad.
+    elbow : +1 or -1
+        Sign of ``sin theta2``: ``+1`` gives ``0 <= theta2 <= pi``, ``-1`` gives ``-pi <= theta2 <= 0``.
+
+    Returns ``q = [theta1, theta2, d3, theta4]`` with ``theta1`` in ``(-pi, pi]``.
+
+    Raises
+    ------
+    UnreachableError
+        The point is outside the annulus ``|a1 - a2| <= r <= a1 + a2`` or needs ``d3`` outside ``[0, d0]``
+        (for a batch, the message names the first such sample).
+    ScaraError
+        ``elbow`` is not +1 or -1.
+
+    >>> ikine(pose([0.3, -1.2, 0.4, 0.1]), elbow=-1).round(6)
+    array([ 0.3, -1.2,  0.4,  0.1])
+    """
+    p = _params(p)
+    if isinstance(elbow, bool) or elbow not in (1, -1):
+        raise ScaraError(f"elbow = {elbow!r} is not allowed: use +1 (sin theta2 >= 0) or -1 (sin theta2 <= 0)")
+    x = as_array(x, "x", (4,), allow_batch=True)
+    batch = x.ndim == 2
+    xs = x if batch else x[None, :]
+    out = np.empty_like(xs)
+    for k in range(xs.shape[0]):
+        code = ikine_kernel(xs[k], p.a1, p.a2, p.d0, float(elbow), out[k])
+        if code:
+            raise UnreachableError(_unreachable_message(xs[k], code, p, f"sample {k}: point" if batch else "point"))
+    return out if batch else out[0]
+
+
+def is_reachable(points, p: ScaraParams | None = None) -> np.ndarray:
+    """Boolean mask: which points (shape (3,)/(4,) or (N, 3)/(N, 4), positions first) the arm can reach."""
+    p = _params(p)
+    pts = np.asarray(points, dtype=float)
+    if pts.ndim not in (1, 2) or pts.shape[-1] not in (3, 4):
+        raise ScaraError(f"points must have shape (3,), (4,), (N, 3) or (N, 4), got {pts.shape}")
+    r = np.hypot(pts[..., 0], pts[..., 1])
+    d3 = p.d0 - pts[..., 2]
+    tol = 1e-12
+    return ((r >= p.r_min - tol) & (r <= p.r_max + tol) & (d3 >= -tol) & (d3 <= p.d0 + tol)
+            & np.all(np.isfinite(pts), axis=-1))
+
+
+def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -> None:
+    """Raise :class:`UnreachableError` naming the point and the limit it breaks if the arm cannot reach it."""
+    p = _params(p)
+    x = as_array(point, label, (3,)) if np.shape(point) == (3,) else as_array(point, label, (4,))
+    if is_reachable(x, p):
+        return
+    r = math.hypot(x[0], x[1])
+    code = 1 if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12) else 2
+    raise UnreachableError(_unreachable_message(x, code, p, label))

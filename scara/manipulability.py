@@ -1,0 +1,135 @@
+"""Manipulability (SPEC section 2): the measure ``w(q)``, the velocity and force ellipsoids, workspace maps."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._compile import kernel
+from .errors import ScaraError, as_array
+from .kinematics import _params, jacobian, pose
+from .params import ScaraParams
+
+__all__ = [
+    "manipulability",
+    "manipulability_kernel",
+    "Ellipsoid",
+    "velocity_ellipsoid",
+    "force_ellipsoid",
+    "workspace_map",
+    "singular_radii",
+]
+
+
+@kernel
+def manipulability_kernel(q, a1, a2):
+    """``w(q) = sqrt(det(J_A J_A^T)) = |det J_A| = a1 a2 |sin theta2|`` (SPEC section 2)."""
+    return a1 * a2 * abs(math.sin(q[1]))
+
+
+def manipulability(q, p: ScaraParams | None = None):
+    """Yoshikawa's manipulability ``w(q) = sqrt(det(J_A J_A^T)) = a1 a2 |sin theta2|`` (SPEC section 2).
+
+    ``q`` of shape (4,) gives a float, ``(N, 4)`` an array (N,).
+
+    >>> round(manipulability([0.0, -math.pi / 2, 0.5, 0.0]), 3)
+    0.25
+    """
+    p = _params(p)
+    q = as_array(q, "q", (4,), allow_batch=True)
+    if q.ndim == 1:
+        return float(manipulability_kernel(q, p.a1, p.a2))
+    return p.a1 * p.a2 * np.abs(np.sin(q[:, 1]))
+
+
+@dataclass(frozen=True)
+class Ellipsoid:
+    """A manipulability ellipsoid at the end-effector position ``centre``.
+
+    ``axes[:, i]`` is the unit direction of the i-th principal axis (base frame), ``lengths[i]`` its semi-axis
+    length (``inf`` along a direction the arm cannot resist or ``0`` along one it cannot move).
+    ``rows`` names the operational components kept (0 = x, 1 = y, 2 = z).
+    """
+
+    centre: np.ndarray
+    axes: np.ndarray
+    lengths: np.ndarray
+    rows: tuple
+    kind: str
+
+    def outline(self, n: int = 73, scale: float = 1.0, plane=(0, 1)) -> np.ndarray:
+        """Points ``(n, 2)`` of the ellipse cut by the principal axes lying in ``plane`` (default x-y).
+
+        For the SCARA's position part the horizontal and vertical directions decouple, so the x-y ellipse
+        is the section of the ellipsoid through its centre. Infinite lengths are not drawable: raises.
+        """
+        sel = [i for i in range(len(self.rows)) if np.linalg.norm(self.axes[list(plane), i]) > 1 - 1e-9]
+        if len(sel) != 2:
+            raise ScaraError(f"the ellipsoid has no pair of principal axes in the plane {plane}")
+        if not np.all(np.isfinite(self.lengths[sel])):
+            raise ScaraError(f"the {self.kind} ellipse is unbounded at a singular configuration (lengths {self.lengths})")
+        th = np.linspace(0.0, 2 * math.pi, n)
+        pts = np.zeros((n, 2))
+        for i in sel:
+            pts += np.outer(np.cos(th) if i == sel[0] else np.sin(th), scale * self.lengths[i] * self.axes[list(plane), i])
+        return pts + self.centre[list(plane)]
+
+
+def _position_svd(q, p, rows):
+    rows = tuple(int(r) for r in rows)
+    if not rows or any(r not in (0, 1, 2) for r in rows) or len(set(rows)) != len(rows):
+        raise ScaraError(f"rows = {rows} must be distinct operational position components among 0 (x), 1 (y), 2 (z)")
+    J = jacobian(q, p)[list(rows), :]
+    U, s, _ = np.linalg.svd(J, full_matrices=False)
+    return U, s, rows
+
+
+def velocity_ellipsoid(q, p: ScaraParams | None = None, rows=(0, 1, 2)) -> Ellipsoid:
+    """The velocity manipulability ellipsoid ``v^T (J_P J_P^T)^-1 v = 1`` of the position rows ``J_P``.
+
+    From the SVD ``J_P = U S V^T``: axes are the columns of ``U``, semi-axis lengths the singular values
+    (Siciliano et al., section 3.9). ``rows=(0, 1)`` gives the horizontal ellipse.
+    """
+    p = _params(p)
+    U, s, rows = _position_svd(q, p, rows)
+    return Ellipsoid(pose(q, p)[:3], U, s, rows, "velocity")
+
+
+def force_ellipsoid(q, p: ScaraParams | None = None, rows=(0, 1, 2)) -> Ellipsoid:
+    """The force manipulability ellipsoid ``f^T (J_P J_P^T) f = 1``, dual of :func:`velocity_ellipsoid`.
+
+    Same principal directions, reciprocal lengths ``1/sigma_i`` (``inf`` where ``sigma_i = 0``): where the arm
+    moves fast it pushes weakly and the other way round.
+    """
+    p = _params(p)
+    U, s, rows = _position_svd(q, p, rows)
+    with np.errstate(divide="ignore"):
+        lengths = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), np.inf)
+    return Ellipsoid(pose(q, p)[:3], U, lengths, rows, "force")
+
+
+def singular_radii(p: ScaraParams | None = None) -> tuple[float, float]:
+    """Radii ``(|a1 - a2|, a1 + a2)`` of the circles where ``w = 0`` (arm folded, arm stretched)."""
+    p = _params(p)
+    return p.r_min, p.r_max
+
+
+def workspace_map(p: ScaraParams | None = None, n: int = 201):
+    """``w`` over a square grid of end-effector positions ``(x, y)`` covering the workspace.
+
+    ``w`` depends on the distance ``r`` to the joint-1 axis only: ``cos theta2 = (r^2 - a1^2 - a2^2) / (2 a1 a2)``
+    and ``w = a1 a2 sin|theta2|``, the same for both elbows. Returns ``(xs, ys, W)`` with ``W[i, j]`` at
+    ``(xs[j], ys[i])`` and NaN where the point is outside the annulus (no configuration reaches it).
+    """
+    p = _params(p)
+    if int(n) < 3:
+        raise ScaraError(f"n = {n} grid points per side is too few (need >= 3)")
+    xs = np.linspace(-p.r_max, p.r_max, int(n))
+    X, Y = np.meshgrid(xs, xs)
+    r2 = X**2 + Y**2
+    c2 = (r2 - p.a1**2 - p.a2**2) / (2 * p.a1 * p.a2)
+    inside = np.abs(c2) <= 1.0 + 1e-12  # points on the singular circles count as reachable
+    W = np.full(X.shape, np.nan)
+    W[inside] = p.a1 * p.a2 * np.sqrt(np.clip(1.0 - c2[inside] ** 2, 0.0, None))
+    return xs, xs.copy(), W

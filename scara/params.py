@@ -1,0 +1,125 @@
+"""The robot's parameters (SPEC section 1) in one frozen object."""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import ScaraError
+
+__all__ = ["ScaraParams"]
+
+
+def _vec(*values):
+    return field(default_factory=lambda: tuple(float(v) for v in values))
+
+
+@dataclass(frozen=True)
+class ScaraParams:
+    """Geometry, masses, inertias, motors and payload of the 4-axis SCARA arm (SPEC section 1).
+
+    ``ScaraParams()`` is the robot of the course without payload. The object is frozen: a heavier payload
+    or a controller's wrong estimate is a copy, made with :meth:`with_payload` or :meth:`replace`.
+
+    Units: metres, kilograms, kg m^2, N m s/rad; ``k_r[2]`` is in rad/m (rotor radians per metre of ``d3``).
+
+    Examples
+    --------
+    >>> p = ScaraParams().with_payload(5.0)
+    >>> p.m3
+    15.0
+    """
+
+    d0: float = 1.0
+    a1: float = 0.5
+    a2: float = 0.5
+    l1: float = 0.25
+    l2: float = 0.25
+    m_l1: float = 20.0
+    m_l2: float = 20.0
+    m_l3: float = 10.0
+    I_l1: float = 4.0
+    I_l2: float = 4.0
+    I_l4: float = 1.0
+    k_r: tuple = _vec(1.0, 1.0, 50.0, 20.0)
+    I_m: tuple = _vec(0.01, 0.01, 0.005, 0.001)
+    F_m: tuple = _vec(5e-5, 5e-5, 0.01, 0.005)
+    m_L: float = 0.0
+    g0: float = 9.81
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            if isinstance(v, (tuple, list, np.ndarray)):
+                arr = np.asarray(v, dtype=float)
+                if arr.shape != (4,):
+                    raise ScaraError(f"{f.name} must have 4 entries (one per joint), got shape {arr.shape}")
+                if not np.all(np.isfinite(arr)) or np.any(arr < 0):
+                    raise ScaraError(f"{f.name} = {arr.tolist()} must be finite and >= 0")
+                object.__setattr__(self, f.name, tuple(float(x) for x in arr))
+            else:
+                try:
+                    x = float(v)
+                except (TypeError, ValueError) as exc:
+                    raise ScaraError(f"{f.name} must be a number, got {v!r}") from exc
+                if not np.isfinite(x) or x < 0:
+                    raise ScaraError(f"{f.name} = {x} must be finite and >= 0")
+                object.__setattr__(self, f.name, x)
+        for name in ("a1", "a2", "d0"):
+            if getattr(self, name) <= 0:
+                raise ScaraError(f"{name} = {getattr(self, name)} must be > 0 (a length of the arm)")
+
+    # -- copies -------------------------------------------------------------------------------------
+    def replace(self, **changes) -> "ScaraParams":
+        """Return a copy with the given fields replaced, e.g. ``p.replace(m_l3=12.0)``."""
+        unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
+        if unknown:
+            raise ScaraError(f"unknown parameter(s) {sorted(unknown)}; known: {[f.name for f in dataclasses.fields(self)]}")
+        return dataclasses.replace(self, **changes)
+
+    def with_payload(self, m_L: float) -> "ScaraParams":
+        """Return a copy carrying a point-mass payload ``m_L`` (kg) on the joint-4 axis."""
+        return self.replace(m_L=m_L)
+
+    # -- derived quantities -------------------------------------------------------------------------
+    @property
+    def m3(self) -> float:
+        """Mass moving with the quill: ``m_l3 + m_L`` (kg)."""
+        return self.m_l3 + self.m_L
+
+    @property
+    def F(self) -> np.ndarray:
+        """Viscous friction at the joints, ``diag(k_ri^2 F_mi)`` (SPEC section 3), shape (4,)."""
+        return np.asarray(self.k_r) ** 2 * np.asarray(self.F_m)
+
+    @property
+    def r_min(self) -> float:
+        """Inner radius of the reachable annulus, ``|a1 - a2|`` (m)."""
+        return abs(self.a1 - self.a2)
+
+    @property
+    def r_max(self) -> float:
+        """Outer radius of the reachable annulus, ``a1 + a2`` (m)."""
+        return self.a1 + self.a2
+
+    def kinematic_array(self) -> np.ndarray:
+        """``[a1, a2, d0]`` as a float array, the form compiled kinematic kernels take."""
+        return np.array([self.a1, self.a2, self.d0])
+
+    def table(self) -> list[tuple[str, str, str]]:
+        """Rows ``(symbol, value, meaning)`` of the parameter table, for display."""
+        fmt = lambda v: ", ".join(f"{x:g}" for x in v) if isinstance(v, tuple) else f"{v:g}"  # noqa: E731
+        rows = [
+            ("d0", "m", "height of frame 0 above the base"),
+            ("a1", "m", "length of link 1"), ("a2", "m", "length of link 2"),
+            ("l1", "m", "centre of mass of link 1 from joint 1"), ("l2", "m", "centre of mass of link 2 from joint 2"),
+            ("m_l1", "kg", "mass of link 1"), ("m_l2", "kg", "mass of link 2"), ("m_l3", "kg", "mass of the quill"),
+            ("I_l1", "kg m^2", "inertia of link 1 about its centre of mass"),
+            ("I_l2", "kg m^2", "inertia of link 2 about its centre of mass"),
+            ("I_l4", "kg m^2", "inertia of link 4 about its axis"),
+            ("k_r", "-, -, rad/m, -", "gear ratios"), ("I_m", "kg m^2", "rotor inertias"),
+            ("F_m", "N m s/rad", "viscous friction at the rotors"), ("m_L", "kg", "payload"),
+            ("g0", "m/s^2", "gravity"),
+        ]
+        return [(s, f"{fmt(getattr(self, s))} {u}", m) for s, u, m in rows]

@@ -1,0 +1,79 @@
+"""Shared figure conventions: the book renderer, one palette per method, base layout, slider steps."""
+from __future__ import annotations
+
+import plotly.graph_objects as go
+import plotly.io as pio
+from plotly.io._base_renderers import MimetypeRenderer
+
+__all__ = ["PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "base_layout", "slider", "new_figure", "use_book_renderer"]
+
+# Okabe-Ito colours: distinguishable with the common colour-vision deficiencies and, with the dash styles
+# below, in greyscale. One colour per method or signal, the same across the whole book.
+PALETTE = {
+    "reference": "#000000",
+    "inverse": "#0072B2",
+    "transpose": "#D55E00",
+    "pseudoinverse": "#009E73",
+    "second_order": "#CC79A7",
+    "robust": "#E69F00",
+    "adaptive": "#56B4E9",
+    "operational": "#009E73",
+    "operational_noint": "#D55E00",
+    "pd_gravity": "#999999",
+    "velocity": "#0072B2",
+    "force": "#D55E00",
+    "arm": "#4D4D4D",
+}
+#: colours of the x, y, z, phi components (and of joints 1..4)
+AXIS_COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7")
+JOINT_COLOURS = AXIS_COLOURS
+DASHES = ("solid", "dash", "dot", "dashdot")
+
+
+class _BookHtmlRenderer(MimetypeRenderer):
+    """Returns ``text/html`` that needs ``plotly.min.js`` already loaded by the page (offline book)."""
+
+    def to_mimebundle(self, fig_dict):
+        html = pio.to_html(fig_dict, include_plotlyjs=False, include_mathjax=False, full_html=False,
+                           auto_play=False, validate=False, config={"displaylogo": False, "responsive": True})
+        return {"text/html": html}
+
+
+def use_book_renderer() -> None:
+    """Register the ``scara_book`` renderer and make ``plotly_mimetype+scara_book`` the default.
+
+    JupyterLab keeps its native plotly view (the JSON bundle); the static book uses the HTML bundle, whose
+    ``plotly.min.js`` the book serves itself (see ``_ext/offline_assets.py``).
+    """
+    pio.renderers["scara_book"] = _BookHtmlRenderer()
+    pio.renderers.default = "plotly_mimetype+scara_book"
+
+
+def base_layout(title: str | None = None, height: int = 420, **kw) -> dict:
+    """The book's layout defaults: readable on a laptop and a phone-width page."""
+    lay = dict(
+        template="plotly_white",
+        height=height,
+        margin=dict(l=60, r=20, t=60 if title else 30, b=50),
+        legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="left", x=0),
+        font=dict(size=13),
+    )
+    if title:
+        lay["title"] = dict(text=title, x=0.0, xanchor="left")
+    lay.update(kw)
+    return lay
+
+
+def new_figure(title: str | None = None, height: int = 420, **kw) -> go.Figure:
+    """An empty figure with :func:`base_layout`."""
+    return go.Figure(layout=base_layout(title, height, **kw))
+
+
+def slider(steps: list[dict], prefix: str, active: int = 0, pad_top: int = 40) -> dict:
+    """A plotly slider from a list of ``{"label": str, "method": ..., "args": [...]}`` steps."""
+    return dict(
+        active=active,
+        currentvalue=dict(prefix=prefix, font=dict(size=13)),
+        pad=dict(t=pad_top, b=10),
+        steps=[dict(label=s["label"], method=s.get("method", "update"), args=s["args"]) for s in steps],
+    )
