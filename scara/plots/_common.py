@@ -5,7 +5,9 @@ import plotly.graph_objects as go
 import plotly.io as pio
 from plotly.io._base_renderers import MimetypeRenderer
 
-__all__ = ["PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "base_layout", "slider", "new_figure", "use_book_renderer"]
+__all__ = [
+    "PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "base_layout", "slider", "new_figure", "use_book_renderer", "publish",
+]
 
 # Okabe-Ito colours: distinguishable with the common colour-vision deficiencies and, with the dash styles
 # below, in greyscale. One colour per method or signal, the same across the whole book.
@@ -77,3 +79,33 @@ def slider(steps: list[dict], prefix: str, active: int = 0, pad_top: int = 40) -
         pad=dict(t=pad_top, b=10),
         steps=[dict(label=s["label"], method=s.get("method", "update"), args=s["args"]) for s in steps],
     )
+
+
+class _FigureBundle:
+    """Wraps a figure so that ``myst_nb.glue`` stores its mime bundle (a plotly figure displays itself
+    through ``_ipython_display_``, which glue cannot capture)."""
+
+    def __init__(self, fig: go.Figure):
+        self.fig = fig
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return pio.renderers._build_mime_bundle(self.fig.to_dict(), renderers_string=pio.renderers.default)
+
+
+def publish(fig: go.Figure, name: str) -> None:
+    """Show ``fig`` under its cell and glue it as ``name`` for a numbered, captioned figure in the book.
+
+    In the notebook the figure appears under the cell as usual (JupyterLab). In the book the cell carries
+    the tag ``remove-output`` and a markdown cell places the figure with its caption and label::
+
+        ```{glue:figure} fig-arm
+        :name: fig-arm
+
+        The arm at q = 0, with its DH frames.
+        ```
+
+    so that ``{numref}`fig-arm``` refers to it from any chapter.
+    """
+    from myst_nb import glue
+
+    glue(name, _FigureBundle(fig), display=True)

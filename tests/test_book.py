@@ -1,0 +1,57 @@
+"""The book's notebooks follow the project's conventions (DESIGN.md, Notebooks): checked statically, so a
+chapter that forgets one fails here with a clear message before the build or the browser test runs."""
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+TOC = (ROOT / "_toc.yml").read_text()
+NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
+
+
+def _cells(path):
+    return json.loads(path.read_text())["cells"]
+
+
+def _src(cell):
+    return "".join(cell.get("source", []))
+
+
+def _tags(cell):
+    return cell.get("metadata", {}).get("tags", [])
+
+
+def test_there_are_chapters():
+    assert len(NOTEBOOKS) >= 2
+
+
+@pytest.mark.parametrize("nb", NOTEBOOKS, ids=lambda p: p.name)
+def test_notebook_is_in_the_toc(nb):
+    assert f"book/{nb.stem}" in TOC, f"{nb.name} is not listed in _toc.yml"
+
+
+@pytest.mark.parametrize("nb", NOTEBOOKS, ids=lambda p: p.name)
+def test_outputs_cleared_and_kernel(nb):
+    data = json.loads(nb.read_text())
+    assert data["metadata"].get("kernelspec", {}).get("name") == "python3"
+    stored = [i for i, c in enumerate(data["cells"]) if c["cell_type"] == "code" and (c.get("outputs") or c.get("execution_count"))]
+    assert not stored, f"{nb.name}: cells {stored} carry stored outputs; clear them before committing"
+
+
+@pytest.mark.parametrize("nb", [n for n in NOTEBOOKS if re.match(r"\d\d_", n.name)], ids=lambda p: p.name)
+def test_chapter_conventions(nb):
+    cells = _cells(nb)
+    code = [c for c in cells if c["cell_type"] == "code"]
+    md = "\n".join(_src(c) for c in cells if c["cell_type"] == "markdown")
+    asserts = [c for c in code if "remove-cell" in _tags(c) and "assert" in _src(c)]
+    assert asserts, f"{nb.name}: no hidden assert cell (tag remove-cell) checking the chapter's numbers"
+    live = [c for c in code if "widgets" in _src(c) and "remove-output" in _tags(c)]
+    assert live, f"{nb.name}: no live panel cell from scara.widgets tagged remove-output"
+    untagged = [i for i, c in enumerate(cells) if c["cell_type"] == "code" and "scara.widgets" in _src(c)
+                and "remove-output" not in _tags(c) and "remove-cell" not in _tags(c)]
+    assert not untagged, f"{nb.name}: cells {untagged} show a widget on the static page (tag them remove-output)"
+    assert re.search(r"live only|live-only", md, re.I), f"{nb.name}: the live panel is not introduced as live-only"
+    assert "{dropdown}" in md or ":class: dropdown" in md, f"{nb.name}: no folded exercise solution"
+    assert "glue(" in "\n".join(_src(c) for c in code), f"{nb.name}: no glued number"
