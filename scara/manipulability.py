@@ -59,20 +59,25 @@ class Ellipsoid:
     kind: str
 
     def outline(self, n: int = 73, scale: float = 1.0, plane=(0, 1)) -> np.ndarray:
-        """Points ``(n, 2)`` of the ellipse cut by the principal axes lying in ``plane`` (default x-y).
+        """Points ``(n, 2)`` of the ellipse cut by the principal axes lying in ``plane``.
 
-        For the SCARA's position part the horizontal and vertical directions decouple, so the x-y ellipse
-        is the section of the ellipsoid through its centre. Infinite lengths are not drawable: raises.
+        ``plane`` names two base-frame components (0 = x, 1 = y, 2 = z), both among ``rows``. For the SCARA's
+        position part the horizontal and vertical directions decouple, so the x-y ellipse is the section of
+        the ellipsoid through its centre. Raises :class:`ScaraError` when the plane is not spanned by two
+        principal axes or an axis is unbounded (the force ellipse at a singular configuration).
         """
-        sel = [i for i in range(len(self.rows)) if np.linalg.norm(self.axes[list(plane), i]) > 1 - 1e-9]
+        plane = tuple(int(c) for c in plane)
+        if len(plane) != 2 or any(c not in self.rows for c in plane) or plane[0] == plane[1]:
+            raise ScaraError(f"plane = {plane} must name two distinct components among rows = {self.rows}")
+        local = [self.rows.index(c) for c in plane]  # positions of the plane's components in the axes
+        sel = [i for i in range(len(self.rows)) if np.linalg.norm(self.axes[local, i]) > 1 - 1e-9]
         if len(sel) != 2:
-            raise ScaraError(f"the ellipsoid has no pair of principal axes in the plane {plane}")
+            raise ScaraError(f"the {self.kind} ellipsoid has no pair of principal axes in the plane {plane}")
         if not np.all(np.isfinite(self.lengths[sel])):
             raise ScaraError(f"the {self.kind} ellipse is unbounded at a singular configuration (lengths {self.lengths})")
         th = np.linspace(0.0, 2 * math.pi, n)
-        pts = np.zeros((n, 2))
-        for i in sel:
-            pts += np.outer(np.cos(th) if i == sel[0] else np.sin(th), scale * self.lengths[i] * self.axes[list(plane), i])
+        pts = (np.outer(np.cos(th), scale * self.lengths[sel[0]] * self.axes[local, sel[0]])
+               + np.outer(np.sin(th), scale * self.lengths[sel[1]] * self.axes[local, sel[1]]))
         return pts + self.centre[list(plane)]
 
 

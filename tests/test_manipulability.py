@@ -92,3 +92,24 @@ def test_workspace_map():
     assert math.isclose(math.hypot(xs[j], ys[i]), math.sqrt(0.5), abs_tol=0.02)
     assert singular_radii() == (0.0, 1.0)
     assert singular_radii(ScaraParams(a1=0.6, a2=0.4)) == pytest.approx((0.2, 1.0))
+
+
+@pytest.mark.parametrize("rows, plane", [((0, 1), (0, 1)), ((1, 0), (0, 1)), ((0, 2), (0, 2)))])
+def test_outline_in_any_plane_lies_on_the_ellipsoid(rows, plane):
+    q = [0.4, -1.3, 0.3, 0.0]
+    ve = velocity_ellipsoid(q, rows=rows)
+    pts = ve.outline(n=13, plane=plane)
+    JP = jacobian(q)[list(plane), :]
+    d = pts - ve.centre[list(plane)]
+    assert np.allclose(np.einsum("ni,ij,nj->n", d, np.linalg.inv(JP @ JP.T), d), 1.0)
+
+
+def test_outline_needs_principal_axes_in_the_plane():
+    # with all three rows, the horizontal axes are generally not along x, so x-z is no principal section
+    with pytest.raises(ScaraError, match="no pair of principal axes in the plane"):
+        velocity_ellipsoid([0.4, -1.3, 0.3, 0.0]).outline(plane=(0, 2))
+
+
+def test_outline_plane_must_be_among_rows():
+    with pytest.raises(ScaraError, match=r"plane = \(0, 2\) must name two distinct components among rows = \(0, 1\)"):
+        velocity_ellipsoid([0.4, -1.3, 0.3, 0.0], rows=(0, 1)).outline(plane=(0, 2))

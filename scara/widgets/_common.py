@@ -44,15 +44,16 @@ class LivePanel:
         except (ScaraError, ValueError) as exc:
             self.last_error = str(exc)
             self.message.value = f'<div style="color:#B00020;padding:6px 0"><b>Cannot show this setting:</b> {html.escape(str(exc))}</div>'
-            self.out.clear_output(wait=True)
+            self.out.outputs = ()
             return
         self.message.value = ""
         if isinstance(figs, go.Figure):
             figs = [figs]
-        with self.out:
-            self.out.clear_output(wait=True)
-            for f in figs:
-                display(f) if isinstance(f, go.Figure) else display(HTML(str(f)))
+        # Fill the output area directly rather than capturing with ``with self.out:``: under nbclient (the
+        # book build) the capture can wait on the kernel's own shell channel until the cell times out.
+        self.out.outputs = ()
+        for f in figs:
+            self.out.append_display_data(f if isinstance(f, go.Figure) else HTML(str(f)))
 
     def _ipython_display_(self):
         display(self.widget)
