@@ -94,7 +94,7 @@ def test_workspace_map():
     assert singular_radii(ScaraParams(a1=0.6, a2=0.4)) == pytest.approx((0.2, 1.0))
 
 
-@pytest.mark.parametrize("rows, plane", [((0, 1), (0, 1)), ((1, 0), (0, 1)), ((0, 2), (0, 2)))])
+@pytest.mark.parametrize("rows, plane", [((0, 1), (0, 1)), ((1, 0), (0, 1)), ((0, 2), (0, 2))])
 def test_outline_in_any_plane_lies_on_the_ellipsoid(rows, plane):
     q = [0.4, -1.3, 0.3, 0.0]
     ve = velocity_ellipsoid(q, rows=rows)
