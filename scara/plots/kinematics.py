@@ -1,0 +1,291 @@
+"""Figures of chapter 1 (kinematics): the arm and its DH frames in 3-D, a joint sweep with slider steps, both
+inverse-kinematics solutions of a target seen from above, and the Jacobian determinant against theta2.
+
+Every builder takes joint vectors ``q = [theta1, theta2, d3, theta4]`` (rad, rad, m, rad) and an optional
+parameter object ``p`` (``None`` means ``ScaraParams()``), calls :mod:`scara.kinematics` for the geometry
+and returns a ``plotly.graph_objects.Figure``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import plotly.graph_objects as go
+
+from ..errors import ScaraError, as_array, as_vector
+from ..kinematics import _params, ikine, jacobian, link_frames, pose
+from ._common import AXIS_COLOURS, PALETTE, base_layout, slider
+
+__all__ = [
+    "FRAME_NAMES",
+    "ELBOW_COLOURS",
+    "arm_geometry",
+    "arm_figure",
+    "joint_slider_figure",
+    "top_view_arm",
+    "inverse_kinematics_figure",
+    "determinant_figure",
+]
+
+#: names of the frames drawn by :func:`arm_figure`: the base frame, then the six of :func:`link_frames`
+FRAME_NAMES = ("b", "0", "1", "2", "3", "4", "e")
+#: one colour per elbow solution (+1: sin theta2 >= 0, -1: sin theta2 <= 0)
+ELBOW_COLOURS = {+1: "#0072B2", -1: "#E69F00"}
+_JOINT_LABELS = ("θ1", "θ2", "d3", "θ4")
+_TRIAD_NAMES = ("x axes", "y axes", "z axes")
+
+
+def _as_list(values, digits: int = 4) -> list:
+    """A plain list for plotly (NaN becomes ``None``, a gap in a line), rounded to keep pages light."""
+    return [None if not np.isfinite(v) else round(float(v), digits) for v in np.ravel(values)]
+
+
+def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
+    """Points to draw the arm at ``q`` in the base frame.
+
+    Returns a dict with
+    ``"arm"`` (5, 3): base, frame-0 origin (top of the column, height ``d0``), elbow, end of link 2, end
+    effector (bottom of the quill);
+    ``"triads"``: three arrays (3 * 7, 3), the x, y and z axes (length ``triad`` m) of the frames
+    ``b, 0, 1, 2, 3, 4, e`` as segments separated by NaN rows;
+    ``"origins"`` (7, 3) and ``"labels"``: the frame origins and names, coincident frames sharing one label
+    (frames 3, 4 and e share the end-effector origin).
+
+    Raises :class:`ShapeError`/:class:`NonFiniteError` for a bad ``q``.
+    """
+    p = _params(p)
+    if not (isinstance(triad, (int, float)) and math.isfinite(triad) and triad > 0):
+        raise ScaraError(f"triad = {triad!r} must be a positive length in metres")
+    frames = np.concatenate([np.eye(4)[None], link_frames(q, p)])  # b, 0, 1, 2, 3, 4, e
+    origins = frames[:, :3, 3]
+    arm = np.array([[0.0, 0.0, 0.0], origins[1], origins[2], origins[3], origins[6]])
+    triads = []
+    for k in range(3):
+        seg = np.full((3 * len(frames), 3), np.nan)
+        seg[0::3] = origins
+        seg[1::3] = origins + triad * frames[:, :3, k]
+        triads.append(seg)
+    # one label per distinct origin, e.g. "3, 4, e" at the end effector
+    labels, label_pts = [], []
+    for name, o in zip(FRAME_NAMES, origins):
+        for i, other in enumerate(label_pts):
+            if np.linalg.norm(other - o) < 1e-9:
+                labels[i] += f", {name}"
+                break
+        else:
+            labels.append(name)
+            label_pts.append(o)
+    return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels}
+
+
+def _layout(title: str, height: int, legend_rows: int = 1, subplot_titles: bool = False, **kw) -> dict:
+    """:func:`base_layout` with room at the top for a (possibly two-line) title and ``legend_rows`` rows of
+    legend, so that neither overlaps the other nor the subplot titles."""
+    title_px = 30 + 18 * title.count("<br>")
+    legend_px = 22 * legend_rows
+    top = 20 + title_px + legend_px + (28 if subplot_titles else 8)
+    lay = base_layout(title, height, **kw)
+    lay["title"].update(y=1.0 - 18 / height, yanchor="top", yref="container")
+    lay["legend"] = dict(orientation="h", xanchor="left", x=0.0, yref="container", yanchor="top",
+                         y=1.0 - (16 + title_px) / height)
+    lay["margin"] = dict(lay["margin"], t=top)
+    return lay
+
+
+def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
+    g = arm_geometry(q, p, triad)
+    colour = colour or PALETTE["arm"]
+    arm, ee = g["arm"], g["arm"][-1]
+    traces = [
+        go.Scatter3d(x=_as_list(arm[:, 0]), y=_as_list(arm[:, 1]), z=_as_list(arm[:, 2]), mode="lines+markers",
+                     name=name, line=dict(color=colour, width=9), marker=dict(size=4, color=colour),
+                     hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>" + name + "</extra>"),
+        go.Scatter3d(x=[round(ee[0], 4)], y=[round(ee[1], 4)], z=[round(ee[2], 4)], mode="markers",
+                     name="end effector", marker=dict(size=6, color=PALETTE["reference"], symbol="diamond"),
+                     hovertemplate="p_e = (%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra></extra>"),
+    ]
+    if frames:
+        for k in range(3):
+            s = g["triads"][k]
+            traces.append(go.Scatter3d(x=_as_list(s[:, 0]), y=_as_list(s[:, 1]), z=_as_list(s[:, 2]), mode="lines",
+                                       name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5),
+                                       hoverinfo="skip"))
+        o = g["origins"]
+        traces.append(go.Scatter3d(x=_as_list(o[:, 0] + 0.03), y=_as_list(o[:, 1] + 0.03), z=_as_list(o[:, 2] + 0.04),
+                                   mode="text", text=g["labels"], name="frame names", showlegend=False,
+                                   textfont=dict(size=12, color="#333333"), hoverinfo="skip"))
+    return traces
+
+
+def _scene(p):
+    reach = p.r_max + 0.2
+    ztop = p.d0 + 0.2
+    return dict(
+        xaxis=dict(title="x (m)", range=[-reach, reach]),
+        yaxis=dict(title="y (m)", range=[-reach, reach]),
+        zaxis=dict(title="z (m)", range=[0.0, ztop]),
+        aspectmode="manual", aspectratio=dict(x=1.15, y=1.15, z=1.15 * ztop / (2 * reach)),
+        camera=dict(eye=dict(x=1.05, y=-1.35, z=0.75), center=dict(x=0, y=0, z=-0.05)),
+    )
+
+
+def _pose_text(q, p):
+    x = pose(q, p)
+    det = float(np.linalg.det(jacobian(q, p)))
+    return (f"x_e = [{x[0]:.3f} m, {x[1]:.3f} m, {x[2]:.3f} m, {math.degrees(x[3]):.1f}°], "
+            f"det J_A = {det:.3f} m²")
+
+
+def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str | None = None,
+               height: int = 520) -> go.Figure:
+    """3-D view of the arm at ``q`` with the triads of its DH frames (x, y, z axes coloured as
+    ``AXIS_COLOURS``), frame names, and the end-effector position.
+
+    ``q`` (4,) in rad, rad, m, rad. The title states ``x_e`` (SPEC section 2) and ``det J_A``.
+
+    >>> fig = arm_figure([0.3, -1.2, 0.4, 0.1])
+    >>> [t.name for t in fig.data][:2]
+    ['arm', 'end effector']
+    """
+    p = _params(p)
+    q = as_vector(q, "q")
+    fig = go.Figure(_arm_traces(q, p, triad, frames=frames))
+    fig.update_layout(**_layout(title or f"The arm and its frames<br>{_pose_text(q, p)}", height),
+                      scene=_scene(p), uirevision="arm")
+    return fig
+
+
+def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: float = 0.15,
+                        height: int = 560) -> go.Figure:
+    """Static (kernel-free) figure: the arm of :func:`arm_figure` with one slider sweeping joint ``joint``
+    (0-based: 0 = theta1, 1 = theta2, 2 = d3, 3 = theta4) over ``values``, the other joints held at ``q0``.
+
+    ``values`` are in degrees for a revolute joint and metres for ``d3``; by default 25 steps over
+    [-180°, 180°] (or [0, d0] for d3). Each step restyles the traces and retitles the figure with ``x_e`` and
+    ``det J_A``, so a reader of the HTML page moves the joint and sees the arm move. Raises
+    :class:`ScaraError` for an unknown joint, more than 61 steps or (via kinematics) a non-finite value.
+
+    >>> fig = joint_slider_figure(joint=1)
+    >>> len(fig.layout.sliders[0].steps), fig.layout.sliders[0].steps[0].label
+    (25, '-180')
+    """
+    p = _params(p)
+    q0 = np.array([0.0, math.radians(60), 0.5, 0.0]) if q0 is None else as_vector(q0, "q0")
+    if joint not in (0, 1, 2, 3):
+        raise ScaraError(f"joint = {joint!r} must be 0 (theta1), 1 (theta2), 2 (d3) or 3 (theta4)")
+    prismatic = joint == 2
+    if values is None:
+        values = np.linspace(0.0, p.d0, 21) if prismatic else np.linspace(-180.0, 180.0, 25)
+    values = as_array(values, "values", (len(np.atleast_1d(values)),))
+    if not 2 <= len(values) <= 61:
+        raise ScaraError(f"{len(values)} slider steps: use between 2 and 61 (pages stay light)")
+    unit = "m" if prismatic else "°"
+    sep = " " if prismatic else ""  # "0.50 m" but "60°"
+    qs = []
+    for v in values:
+        q = q0.copy()
+        q[joint] = v if prismatic else math.radians(v)
+        qs.append(q)
+    active = int(np.argmin(np.abs(values - (q0[joint] if prismatic else math.degrees(q0[joint])))))
+    fig = go.Figure(_arm_traces(qs[active], p, triad))
+    steps = []
+    for v, q in zip(values, qs):
+        tr = _arm_traces(q, p, triad)
+        label = f"{v:.2f}" if prismatic else f"{v:.0f}"
+        steps.append(dict(
+            label=label, method="update",
+            args=[{"x": [t.x for t in tr], "y": [t.y for t in tr], "z": [t.z for t in tr],
+                   "text": [t.text for t in tr]},
+                  {"title.text": f"{_JOINT_LABELS[joint]} = {label}{sep}{unit}<br>{_pose_text(q, p)}"},
+                  list(range(len(tr)))]))
+    name = _JOINT_LABELS[joint]
+    fig.update_layout(
+        **_layout(f"{name} = {steps[active]['label']}{sep}{unit}<br>{_pose_text(qs[active], p)}", height),
+        scene=_scene(p), uirevision="arm",
+        sliders=[slider(steps, prefix=f"{name} ({unit}) = ", active=active)],
+    )
+    return fig
+
+
+def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0) -> go.Scatter:
+    """The arm at ``q`` seen from above (base x-y plane) as one 2-D line trace: base axis, elbow, end effector."""
+    p = _params(p)
+    origins = link_frames(q, p)[:, :3, 3]
+    pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
+    colour = colour or PALETTE["arm"]
+    return go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="lines+markers", name=name,
+                      line=dict(color=colour, width=width), marker=dict(size=[9, 7, 7], color=colour),
+                      opacity=opacity, showlegend=showlegend,
+                      hovertemplate="(%{x:.3f}, %{y:.3f}) m<extra>" + name + "</extra>")
+
+
+def _circle(radius, n=145):
+    th = np.linspace(0, 2 * math.pi, n)
+    return radius * np.cos(th), radius * np.sin(th)
+
+
+def _planar_axes(fig, p, margin=0.15):
+    """Equal-scale x-y axes (m) covering the workspace disc."""
+    reach = p.r_max + margin
+    fig.update_xaxes(title_text="x (m)", range=[-reach, reach], zeroline=False, constrain="domain")
+    fig.update_yaxes(title_text="y (m)", range=[-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
+
+
+def inverse_kinematics_figure(x, p=None, height: int = 520) -> go.Figure:
+    """Top view of both closed-form inverse-kinematics solutions (elbow +1 and -1) reaching the target ``x``.
+
+    ``x = [p_x, p_y, p_z, phi]`` (m, m, m, rad). Draws the workspace boundary circles ``r = a1 + a2`` and
+    ``r = |a1 - a2|``, both arms and the target. Raises :class:`UnreachableError` (from :func:`ikine`) when
+    the target is outside the workspace.
+
+    >>> fig = inverse_kinematics_figure([0.18, 0.20, 0.5, 0.0])
+    >>> [t.name for t in fig.data][1]
+    'elbow +1 (θ2 = 148.8°)'
+    """
+    p = _params(p)
+    x = as_vector(x, "x")
+    fig = go.Figure()
+    cx, cy = _circle(p.r_max)
+    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"r = a1 + a2 = {p.r_max:g} m",
+                             line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip"))
+    if p.r_min > 0:
+        cx, cy = _circle(p.r_min)
+        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines",
+                                 name=f"r = |a1 - a2| = {p.r_min:g} m",
+                                 line=dict(color="#999999", dash="dot", width=1), hoverinfo="skip"))
+    parts = []
+    for elbow in (+1, -1):
+        q = ikine(x, p, elbow=elbow)
+        sign = "+" if elbow > 0 else "−"
+        fig.add_trace(top_view_arm(q, p, colour=ELBOW_COLOURS[elbow], name=f"elbow {sign}1 (θ2 = {math.degrees(q[1]):.1f}°)"))
+        parts.append(f"θ2 = {math.degrees(q[1]):.1f}°")
+    fig.add_trace(go.Scatter(x=[x[0]], y=[x[1]], mode="markers", name="target",
+                             marker=dict(symbol="x", size=13, color=PALETTE["reference"]),
+                             hovertemplate="target (%{x:.3f}, %{y:.3f}) m<extra></extra>"))
+    fig.update_layout(**_layout(
+        f"Both elbows reach p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, d3 = {p.d0 - x[2]:.2f} m", height))
+    _planar_axes(fig, p)
+    return fig
+
+
+def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 400) -> go.Figure:
+    """``det J_A`` (numerical determinant of :func:`jacobian`) and ``w = |det J_A|`` against ``theta2`` over
+    [-180°, 180°], with the singular configurations (stretched, folded) marked. ``theta1`` in rad; ``n``
+    samples (>= 3)."""
+    p = _params(p)
+    if int(n) < 3:
+        raise ScaraError(f"n = {n} samples is too few (need >= 3)")
+    t2 = np.linspace(-180.0, 180.0, int(n))
+    det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
+    fig = go.Figure()
+    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(det, 5), mode="lines", name="det J_A (numerical)",
+                             line=dict(color=AXIS_COLOURS[0], width=3)))
+    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(np.abs(det), 5), mode="lines",
+                             name="w = |det J_A|", line=dict(color=AXIS_COLOURS[1], dash="dash", width=2)))
+    fig.add_trace(go.Scatter(x=[-180, 0, 180], y=[0, 0, 0], mode="markers+text", name="singular (det J_A = 0)",
+                             text=["folded", "stretched", "folded"], textposition="top center",
+                             marker=dict(size=11, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))))
+    fig.update_layout(**_layout("The Jacobian determinant against θ2 (θ1, d3, θ4 do not matter)", height))
+    fig.update_xaxes(title_text="θ2 (deg)", tickvals=list(range(-180, 181, 45)))
+    fig.update_yaxes(title_text="det J_A (m²)")
+    return fig
