@@ -248,11 +248,11 @@ def _unreachable_message(x, code, p, label="point"):
     r = math.hypot(x[0], x[1])
     if code == 1:
         return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: its distance from the "
-                f"joint-1 axis r = {r:.6g} m is outside the annulus |a1 - a2| = {p.r_min:g} m <= r <= "
+                f"joint-1 axis r = {r:.10g} m is outside the annulus |a1 - a2| = {p.r_min:g} m <= r <= "
                 f"a1 + a2 = {p.r_max:g} m")
     d3 = p.d0 - x[2]
-    return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: p_z = {x[2]:.6g} m needs "
-            f"d3 = d0 - p_z = {d3:.6g} m, outside the stroke 0 <= d3 <= d0 = {p.d0:g} m")
+    return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: p_z = {x[2]:.10g} m needs "
+            f"d3 = d0 - p_z = {d3:.10g} m, outside the stroke 0 <= d3 <= d0 = {p.d0:g} m")
 
 
 def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
