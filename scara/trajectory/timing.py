@@ -1,0 +1,162 @@
+"""The trapezoidal timing law: linear segments with parabolic blends on a path's arc length.
+
+The arc length ``s(tau)`` (``tau`` = time since the segment started, ``0 <= tau <= T``) accelerates at a
+constant rate for the blend time ``t_c``, cruises at ``v_c``, and decelerates symmetrically (Siciliano et al.,
+eqs. 4.8-4.9, applied to ``s`` as in section 4.3):
+
+    s = a tau^2 / 2                       0 <= tau < t_c
+    s = v_c (tau - t_c / 2)               t_c <= tau < T - t_c
+    s = L - a (T - tau)^2 / 2             T - t_c <= tau <= T
+
+with ``v_c = L / (T - t_c)`` and ``a = v_c / t_c``; ``s = 0`` before the start and ``s = L`` after the end.
+The blend may not exceed half the duration (``t_c = T/2`` is the triangular profile).
+
+The acceleration is piecewise constant and taken right-continuous: at a switching instant it already has
+its new value, so a forward-Euler step from that sample integrates the velocity exactly.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ScaraError, check_positive
+
+__all__ = ["Trapezoidal", "trapezoidal", "DEFAULT_BLEND_FRACTION"]
+
+#: blend time as a fraction of the duration when none is given (cruise speed 1.5 L / T)
+DEFAULT_BLEND_FRACTION = 1.0 / 3.0
+
+
+@dataclass(frozen=True)
+class Trapezoidal:
+    """A trapezoidal velocity profile covering ``length`` (m) in ``duration`` (s) with blends of ``blend`` (s).
+
+    Attributes ``cruise_speed`` (m/s) and ``acceleration`` (m/s^2) follow from the three inputs.
+
+    Raises
+    ------
+    ScaraError
+        A non-positive length, duration or blend, or a blend longer than half the duration.
+
+    >>> law = Trapezoidal(length=0.3, duration=3.0, blend=1.0)
+    >>> law.cruise_speed, law.acceleration
+    (0.15, 0.15)
+    >>> [float(v) for v in law.evaluate(1.5)]     # mid-way: half the length, cruising, no acceleration
+    [0.15, 0.15, 0.0]
+    """
+
+    length: float
+    duration: float
+    blend: float
+
+    def __post_init__(self):
+        L = check_positive(self.length, "length")
+        T = check_positive(self.duration, "duration")
+        tc = check_positive(self.blend, "blend")
+        if tc > T / 2 * (1 + 1e-12):
+            raise ScaraError(f"blend = {tc:g} s is longer than half the duration T/2 = {T / 2:g} s; a trapezoidal "
+                             f"profile needs 0 < blend <= T/2")
+        object.__setattr__(self, "length", L)
+        object.__setattr__(self, "duration", T)
+        object.__setattr__(self, "blend", min(tc, T / 2))
+
+    @property
+    def cruise_speed(self) -> float:
+        """``v_c = L / (T - t_c)`` (m/s), the peak of ``sdot``."""
+        return self.length / (self.duration - self.blend)
+
+    @property
+    def acceleration(self) -> float:
+        """``a = v_c / t_c`` (m/s^2), the magnitude of ``sddot`` during the blends."""
+        return self.cruise_speed / self.blend
+
+    @classmethod
+    def minimum_time(cls, length, speed, acceleration, dt=None) -> "Trapezoidal":
+        """The fastest profile over ``length`` with speed at most ``speed`` and acceleration ``acceleration``.
+
+        If the cruise speed is reachable (``L >= v^2/a``): ``t_c = v/a`` and ``T = L/v + v/a``; otherwise the
+        profile is triangular, ``t_c = sqrt(L/a)``, ``T = 2 t_c``. With ``dt`` the duration is rounded up to a
+        whole number of samples and the blend recomputed for the same acceleration,
+        ``t_c = T/2 - sqrt(T^2/4 - L/a)`` (Siciliano et al., eq. 4.10), so the speed stays within ``speed``.
+
+        >>> law = Trapezoidal.minimum_time(0.4, speed=0.2, acceleration=0.4)
+        >>> law.duration, law.blend
+        (2.5, 0.5)
+        """
+        L = check_positive(length, "length")
+        v = check_positive(speed, "speed")
+        a = check_positive(acceleration, "acceleration")
+        if L >= v * v / a:
+            tc, T = v / a, L / v + v / a
+        else:
+            tc = math.sqrt(L / a)
+            T = 2.0 * tc
+        if dt is not None:
+            dt = check_positive(dt, "dt")
+            n = math.ceil(T / dt - 1e-9)
+            T = n * dt
+            tc = T / 2 - math.sqrt(max(T * T / 4 - L / a, 0.0))
+        return cls(L, T, tc)
+
+    def evaluate(self, tau):
+        """``s, sdot, sddot`` at times ``tau`` (s since the segment's start; scalar or array of any shape).
+
+        Before the start the values are ``0, 0, 0``; after the end ``L, 0, 0``.
+        """
+        tau = np.asarray(tau, dtype=float)
+        L, T, tc = self.length, self.duration, self.blend
+        v = self.cruise_speed
+        a = self.acceleration
+        acc = (tau >= 0) & (tau < tc)
+        dec = (tau >= T - tc) & (tau < T)
+        cru = (tau >= tc) & (tau < T - tc)
+        done = tau >= T
+        r = T - tau
+        s = np.where(acc, 0.5 * a * tau * tau,
+                     np.where(cru, v * (tau - 0.5 * tc), np.where(dec, L - 0.5 * a * r * r, np.where(done, L, 0.0))))
+        sd = np.where(acc, a * tau, np.where(cru, v, np.where(dec, a * r, 0.0)))
+        sdd = np.where(acc, a, np.where(dec, -a, 0.0))
+        return s, sd, sdd
+
+    def evaluate_sorted(self, tau):
+        """:meth:`evaluate` for a sorted 1-D array ``tau`` within ``[0, T)``: the phases are contiguous
+        slices, filled without masks (the fast path of trajectory sampling)."""
+        tau = np.asarray(tau, dtype=float)
+        T, tc = self.duration, self.blend
+        v, a = self.cruise_speed, self.acceleration
+        ia = int(np.searchsorted(tau, tc, side="left"))
+        ib = max(ia, int(np.searchsorted(tau, T - tc, side="left")))
+        s = np.empty_like(tau)
+        sd = np.empty_like(tau)
+        sdd = np.zeros_like(tau)
+        ta = tau[:ia]
+        sdd[:ia] = a
+        sd[:ia] = a * ta
+        s[:ia] = 0.5 * a * ta * ta
+        sd[ia:ib] = v
+        s[ia:ib] = v * (tau[ia:ib] - 0.5 * tc)
+        r = T - tau[ib:]
+        sdd[ib:] = -a
+        sd[ib:] = a * r
+        s[ib:] = self.length - 0.5 * a * r * r
+        return s, sd, sdd
+
+    def switching_times(self) -> np.ndarray:
+        """The instants (since the start) where ``sddot`` jumps: ``[0, t_c, T - t_c, T]`` (s)."""
+        return np.array([0.0, self.blend, self.duration - self.blend, self.duration])
+
+
+def trapezoidal(tau, length, duration, blend=None):
+    """``s, sdot, sddot`` of the trapezoidal timing law at times ``tau`` (see :class:`Trapezoidal`).
+
+    ``blend`` defaults to a third of the duration (cruise speed ``1.5 L / T``).
+
+    >>> s, sd, sdd = trapezoidal([0.0, 1.0, 2.0, 3.0], length=0.3, duration=3.0)
+    >>> s.round(3).tolist(), sd.round(3).tolist()
+    ([0.0, 0.075, 0.225, 0.3], [0.0, 0.15, 0.15, 0.0])
+    """
+    T = check_positive(duration, "duration")
+    law = Trapezoidal(length, T, DEFAULT_BLEND_FRACTION * T if blend is None else blend)
+    return law.evaluate(tau)
