@@ -1,0 +1,90 @@
+"""Live panel of chapter 4 (CLIK): choose a method, set the gain of each operational component, the damping,
+the null-space gain and the relaxed component; the whole 70 s reference is re-run and redrawn on every move.
+Jupyter only."""
+from __future__ import annotations
+
+import math
+
+import ipywidgets as ipw
+import numpy as np
+from plotly.subplots import make_subplots
+
+from ..clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
+from ..kinematics import _params
+from ..plots.clik import METHOD_LABELS, _label, envelope, thin
+from ..plots._common import PALETTE
+from ..plots.kinematics import _layout
+from ._common import LivePanel
+from .kinematics import _table
+
+__all__ = ["clik_panel"]
+
+_STYLE = {"description_width": "initial"}
+_METHODS = {"Jacobian inverse": "inverse", "Jacobian transpose": "transpose",
+            "pseudo-inverse + null space": "pseudoinverse", "second order": "second_order"}
+
+
+def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
+    """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
+    ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain
+    ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara.clik.clik` (or
+    ``clik2``) on ``traj`` (default: the reference of SPEC section 4) and redraws the position error (log),
+    the orientation error and the manipulability, with the summary figures and the run time listed. Settings
+    the package refuses (a gain past a stability limit, a run that diverges) are reported in the panel."""
+    p = _params(p)
+    if traj is None:
+        from ..trajectory import reference_trajectory  # noqa: PLC0415 - built on demand
+
+        traj = reference_trajectory(p=p)
+    gain = dict(base=10, min=0.0, max=math.log10(2500.0), step=0.01, continuous_update=False, readout_format=".0f",
+                style=_STYLE)
+    controls = {
+        "method": ipw.Dropdown(options=list(_METHODS), value="Jacobian inverse", description="method", style=_STYLE),
+        "relaxed": ipw.Dropdown(options=list(COMPONENTS), value="x", description="relaxed (pseudo-inverse)",
+                                style=_STYLE),
+        "Kx": ipw.FloatLogSlider(value=SEED_K[0], description="K_x (1/s)", **gain),
+        "Ky": ipw.FloatLogSlider(value=SEED_K[1], description="K_y (1/s)", **gain),
+        "Kz": ipw.FloatLogSlider(value=SEED_K[2], description="K_z (1/s)", **gain),
+        "Kphi": ipw.FloatLogSlider(value=SEED_K[3], description="K_φ (1/s)", **gain),
+        "damping": ipw.FloatSlider(value=0.0, min=0.0, max=0.2, step=0.005, readout_format=".3f",
+                                   description="damping λ (m)", continuous_update=False, style=_STYLE),
+        "k0": ipw.FloatSlider(value=1.0, min=0.0, max=20.0, step=0.5, description="null-space gain k0 (1/s)",
+                              continuous_update=False, style=_STYLE),
+    }
+
+    def render(method, relaxed, Kx, Ky, Kz, Kphi, damping, k0):
+        m = _METHODS[method]
+        K = np.array([Kx, Ky, Kz, Kphi])
+        if m == "second_order":
+            KP, KD = second_order_gains(K)
+            r = clik2(traj, KP, KD, p=p, damping=damping)
+        elif m == "pseudoinverse":
+            r = clik(traj, m, K, p=p, damping=damping, relaxed=relaxed, k0=k0)
+        else:
+            r = clik(traj, m, K, p=p, damping=damping)
+        fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
+        colour = PALETTE.get(m, "#000000")
+        for row, series in ((1, r.position_error), (2, r.orientation_error)):
+            tt, yy = envelope(r.t, series, points)
+            fig.add_trace(dict(type="scatter", x=tt, y=yy, mode="lines", name=_label(r), showlegend=row == 1,
+                               line=dict(color=colour, width=1.5)), row=row, col=1)
+        idx = thin(len(r.t), points)
+        fig.add_trace(dict(type="scatter", x=r.t[idx], y=r.w[idx], mode="lines", name="w", showlegend=False,
+                           line=dict(color=colour, width=1.5)), row=3, col=1)
+        s = r.summary()
+        fig.update_layout(**_layout(f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = "
+                                    f"{s['max_position_error'] * 1e3:.4g} mm", 620))
+        fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
+        fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
+        fig.update_yaxes(title_text="w (m²)", row=3, col=1)
+        fig.update_xaxes(title_text="t (s)", row=3, col=1)
+        rows = [("max / RMS position error (mm)",
+                 f"{s['max_position_error'] * 1e3:.4g} / {s['rms_position_error'] * 1e3:.4g}"),
+                ("max orientation error (mrad)", f"{s['max_orientation_error'] * 1e3:.4g}"),
+                ("min / mean manipulability (m²)", f"{s['min_manipulability']:.4f} / {s['mean_manipulability']:.4f}"),
+                ("compiled loop (ms)", f"{s['run_time'] * 1e3:.1f}")]
+        if m == "pseudoinverse":
+            rows.append((f"drift of the relaxed {relaxed} (max)", f"{np.abs(r.e[:, COMPONENTS.index(relaxed)]).max():.4g}"))
+        return [fig, _table(rows)]
+
+    return LivePanel(controls, render, title="CLIK on the 70 s reference: tune and watch", columns=2)
