@@ -1,0 +1,205 @@
+"""Figures of chapter 5 (dynamics): where the joint torques go along the reference motion, the torque needed
+with and without payload (static slider over the payload mass), the energy of the free arm with its balance,
+and the inertia matrix at a configuration. Data in, figure out: the numbers come from :mod:`scara.dynamics`
+and :mod:`scara.simulate`."""
+from __future__ import annotations
+
+import numpy as np
+import plotly.graph_objects as go
+from plotly.subplots import make_subplots
+
+from ..dynamics import TORQUE_TERMS, inertia
+from ..errors import ScaraError
+from ..kinematics import _params
+from ._common import JOINT_COLOURS, PALETTE, base_layout, slider
+
+__all__ = [
+    "TERM_COLOURS", "TERM_LABELS", "JOINT_UNITS", "decimate", "torque_share_figure", "torque_terms_figure",
+    "payload_torque_figure", "payload_slider_figure", "energy_figure", "inertia_figure",
+]
+
+#: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
+TERM_COLOURS = {"links": "#0072B2", "rotors": "#E69F00", "payload": "#D55E00", "coriolis": "#CC79A7",
+                "friction": "#009E73", "gravity": "#000000"}
+TERM_LABELS = {"links": "link and quill inertia", "rotors": "rotor inertia and coupling", "payload": "payload (5 kg)",
+               "coriolis": "Coriolis and centrifugal", "friction": "viscous friction", "gravity": "gravity (quill)"}
+#: generalised-force unit of each joint
+JOINT_UNITS = ("N m", "N m", "N", "N m")
+_JOINT_NAMES = ("joint 1 (θ1)", "joint 2 (θ2)", "joint 3 (d3)", "joint 4 (θ4)")
+
+
+def decimate(n: int, target: int = 2000) -> np.ndarray:
+    """Indices of about ``target`` evenly spaced samples out of ``n`` (always keeping the last one)."""
+    if n <= 0:
+        raise ScaraError(f"cannot decimate {n} samples")
+    step = max(1, int(np.ceil(n / target)))
+    idx = np.arange(0, n, step)
+    return idx if idx[-1] == n - 1 else np.append(idx, n - 1)
+
+
+def _f32(a):
+    """Float32 copy for plotting: halves the figure's payload; 7 significant digits are plenty on screen."""
+    return np.asarray(a, dtype=np.float32)
+
+
+def _legend_below(fig, height, offset=70):
+    """Put the legend under the plot (below the x-axis title) so that it never covers a title."""
+    fig.update_layout(legend=dict(orientation="h", yanchor="top", y=-offset / height, xanchor="left", x=0),
+                      margin=dict(l=60, r=20, t=70, b=offset + 70))
+
+
+def _rms(a):
+    return np.sqrt(np.mean(np.asarray(a) ** 2, axis=0))
+
+
+def torque_share_figure(breakdown: dict, title: str = "Where the joint torque goes along the reference motion",
+                        payload_label: str | None = None) -> go.Figure:
+    """Stacked bars, one per joint: the share of each term's RMS value in the sum of the terms' RMS values (%),
+    with the RMS itself (N m or N) in the hover. ``breakdown`` is :func:`scara.dynamics.torque_breakdown`."""
+    rms = {k: _rms(breakdown[k]) for k in TORQUE_TERMS}
+    total = sum(rms.values())
+    total = np.where(total > 0, total, 1.0)
+    fig = go.Figure()
+    for k in TORQUE_TERMS:
+        label = TERM_LABELS[k] if k != "payload" or payload_label is None else payload_label
+        fig.add_bar(x=list(_JOINT_NAMES), y=100 * rms[k] / total, name=label, marker_color=TERM_COLOURS[k],
+                    customdata=np.column_stack([rms[k], list(JOINT_UNITS)]),
+                    hovertemplate="%{x}<br>" + label + ": %{y:.2f} % (RMS %{customdata[0]:.3g} %{customdata[1]})"
+                                  "<extra></extra>")
+    fig.update_layout(**base_layout(title, 440), barmode="stack")
+    fig.update_layout(legend=dict(orientation="v", yanchor="top", y=1.0, xanchor="left", x=1.02, traceorder="reversed"),
+                      margin=dict(l=60, r=20, t=60, b=50))
+    fig.update_yaxes(title_text="share of the summed RMS torques (%)", range=[0, 100])
+    fig.update_xaxes(title_text="joint")
+    return fig
+
+
+def torque_terms_figure(t, breakdown: dict, target: int = 1500,
+                        title: str = "Torque terms along the reference motion") -> go.Figure:
+    """One row per joint: every term of :func:`~scara.dynamics.torque_breakdown` against time (decimated)."""
+    t = np.asarray(t)
+    idx = decimate(len(t), target)
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
+                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
+    for j in range(4):
+        for k in TORQUE_TERMS:
+            y = np.asarray(breakdown[k])[idx, j]
+            fig.add_scatter(x=_f32(t[idx]), y=_f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k, showlegend=(j == 0),
+                            line=dict(color=TERM_COLOURS[k], width=1.5), row=j + 1, col=1)
+        fig.update_yaxes(title_text=JOINT_UNITS[j], row=j + 1, col=1)
+    fig.update_xaxes(title_text="t (s)", row=4, col=1)
+    fig.update_layout(**base_layout(title, 860))
+    _legend_below(fig, 860)
+    return fig
+
+
+def payload_torque_figure(t, torques: dict, target: int = 1500,
+                          title: str = "Torque to follow the second-order CLIK reference") -> go.Figure:
+    """One row per joint, one line per case: ``torques`` maps a label (e.g. ``"no payload"``, ``"5 kg"``) to
+    an (N, 4) torque series."""
+    t = np.asarray(t)
+    idx = decimate(len(t), target)
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
+                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
+    colours = [PALETTE["reference"], TERM_COLOURS["payload"], PALETTE["inverse"], PALETTE["pseudoinverse"]]
+    dashes = ["solid", "dash", "dot", "dashdot"]
+    for c, (label, tau) in enumerate(torques.items()):
+        tau = np.asarray(tau)
+        for j in range(4):
+            fig.add_scatter(x=_f32(t[idx]), y=_f32(tau[idx, j]), mode="lines", name=label, legendgroup=label,
+                            showlegend=(j == 0), line=dict(color=colours[c % 4], dash=dashes[c % 4], width=1.6),
+                            row=j + 1, col=1)
+            fig.update_yaxes(title_text=JOINT_UNITS[j], row=j + 1, col=1)
+    fig.update_xaxes(title_text="t (s)", row=4, col=1)
+    fig.update_layout(**base_layout(title, 820))
+    _legend_below(fig, 820)
+    return fig
+
+
+def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
+                          title: str = "Torque along the reference as the payload grows") -> go.Figure:
+    """Static slider figure: ``torques_by_mass`` maps payload masses (kg) to (N, 4) torque series; one slider
+    step per mass restyles the four traces (one row per joint). Works in the HTML with no kernel."""
+    if not torques_by_mass:
+        raise ScaraError("torques_by_mass is empty: give at least one payload mass")
+    t = np.asarray(t)
+    idx = decimate(len(t), target)
+    masses = list(torques_by_mass)
+    first = np.asarray(torques_by_mass[masses[0]])
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.05,
+                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
+    for j in range(4):
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(first[idx, j]), mode="lines",
+                        name=f"τ{j + 1}, inverse dynamics",
+                        line=dict(color=JOINT_COLOURS[j], width=1.6), row=j + 1, col=1)
+        lo = min(float(np.min(np.asarray(v)[:, j])) for v in torques_by_mass.values())
+        hi = max(float(np.max(np.asarray(v)[:, j])) for v in torques_by_mass.values())
+        pad = 0.05 * (hi - lo) + 1e-6
+        fig.update_yaxes(title_text=JOINT_UNITS[j], range=[lo - pad, hi + pad], row=j + 1, col=1)
+    steps = []
+    for m in masses:
+        tau = np.asarray(torques_by_mass[m])
+        steps.append(dict(label=f"{m:g}", method="restyle",
+                          args=[{"y": [[float(f"{v:.4g}") for v in tau[idx, j]] for j in range(4)]}, [0, 1, 2, 3]]))
+    fig.update_xaxes(title_text="t (s)", row=4, col=1)
+    fig.update_layout(**base_layout(title, 960), sliders=[slider(steps, "payload m_L (kg): ", pad_top=60)])
+    fig.update_layout(legend=dict(orientation="h", yanchor="top", y=-0.2, xanchor="left", x=0),
+                      margin=dict(l=60, r=20, t=60, b=190))
+    return fig
+
+
+def energy_figure(t, energy: dict, title: str = "Energy of the arm released from rest", target: int = 1000) -> go.Figure:
+    """Top: kinetic energy, potential energy and total energy (relative to their start values), the work
+    dissipated by friction and the work done by the torques; bottom: the balance residual
+    ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`."""
+    t = np.asarray(t)
+    idx = decimate(len(t), target)
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.72, 0.28], vertical_spacing=0.08,
+                        subplot_titles=["energies (J), each relative to its value at t = 0",
+                                        "balance residual E − E(0) − W_in + W_f (J)"])
+    T, U, E = (np.asarray(energy[k]) for k in ("kinetic", "potential", "total"))
+    series = [("kinetic energy T", T - T[0], "#0072B2", "solid"),
+              ("potential energy U − U(0)", U - U[0], "#009E73", "dash"),
+              ("total energy E − E(0)", E - E[0], "#000000", "solid"),
+              ("friction work −W_f", -np.asarray(energy["friction_work"]), "#D55E00", "dot")]
+    if np.abs(energy["input_work"]).max() > 0:
+        series.append(("input work W_in", np.asarray(energy["input_work"]), "#CC79A7", "dashdot"))
+    for name, y, c, d in series:
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=2), row=1, col=1)
+    fig.add_scatter(x=_f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines", name="balance residual",
+                    line=dict(color="#999999", width=1.5), row=2, col=1)
+    fig.update_yaxes(title_text="J", row=1, col=1)
+    fig.update_yaxes(title_text="J", exponentformat="e", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    fig.update_layout(**base_layout(title, 640))
+    _legend_below(fig, 640)
+    return fig
+
+
+def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
+    """Left: ``B(q)`` as an annotated heat map; right: each diagonal entry split into links, rotors and
+    payload (stacked horizontal bars). Used by the live panel."""
+    p = _params(p)
+    bare = p.replace(m_L=0.0)
+    no_rotor = bare.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    B = inertia(q, p)
+    d_links = np.diag(inertia(q, no_rotor))
+    d_rot = np.diag(inertia(q, bare)) - d_links
+    d_pay = np.diag(B) - np.diag(inertia(q, bare))
+    fig = make_subplots(rows=1, cols=2, column_widths=[0.5, 0.5], horizontal_spacing=0.14,
+                        subplot_titles=["B(q) (kg m², kg m, kg)", "diagonal of B: what it is made of"])
+    labels = ["1", "2", "3", "4"]
+    fig.add_heatmap(z=np.log10(np.abs(B) + 1e-3), x=labels, y=labels, text=[[f"{v:.3g}" for v in row] for row in B],
+                    texttemplate="%{text}", colorscale="Blues", showscale=False,
+                    hovertemplate="B[%{y},%{x}] = %{text}<extra></extra>", row=1, col=1)
+    fig.update_yaxes(autorange="reversed", title_text="row", row=1, col=1)
+    fig.update_xaxes(title_text="column", row=1, col=1)
+    names = [f"B{i}{i}" for i in range(1, 5)]
+    for k, v in (("links", d_links), ("rotors", d_rot), ("payload", d_pay)):
+        fig.add_bar(y=names, x=v, orientation="h", name=TERM_LABELS[k].replace(" (5 kg)", ""),
+                    marker_color=TERM_COLOURS[k], row=1, col=2)
+    fig.update_xaxes(title_text="kg m² (B33: kg)", row=1, col=2)
+    fig.update_yaxes(autorange="reversed", row=1, col=2)
+    fig.update_layout(**base_layout(title, 460), barmode="stack")
+    _legend_below(fig, 460, offset=60)
+    return fig

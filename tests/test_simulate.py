@@ -1,0 +1,386 @@
+"""The closed-loop engine (scara.simulate): energy conservation and balance, agreement with an independent
+integrator, zero-order hold, the PD-plus-gravity steady state against theory, the controller interface with
+memory, substeps, errors, and the plain-Python path."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from scara import (
+    Controller, PDGravityController, ScaraError, ScaraParams, ShapeError, TorqueController, UnstableError,
+    control_law, forward_dynamics, ikine_reference, joint_setpoint, pose, reference_trajectory, simulate,
+)
+from scara.dynamics import DP_A1, DP_A2, DP_D0, gravity_kernel
+from scara.kinematics import jacobian_kernel, pose_kernel
+from scara.simulate import closed_loop_kernel  # noqa: F401  (the compiled loop must import)
+
+P0 = ScaraParams()
+P5 = ScaraParams().with_payload(5.0)
+NOFRICTION = P5.replace(F_m=(0.0, 0.0, 0.0, 0.0))
+Q0 = np.array([0.2, -1.0, 0.3, 0.1])
+MAX_ERR: dict = {}
+
+
+def _record(name, err):
+    MAX_ERR[name] = max(MAX_ERR.get(name, 0.0), float(err))
+
+
+@pytest.fixture(scope="module")
+def scenario():
+    traj = reference_trajectory()
+    return traj, simulate(PDGravityController(), traj, P5)
+
+
+# --------------------------------------------------------------------------------------------------
+# energy
+# --------------------------------------------------------------------------------------------------
+def test_energy_is_conserved_without_friction_and_torque():
+    """RK4 at 1 ms for 10 s of free motion (no friction, no torque, gravity on: the quill falls freely while
+    the arm spins). The total energy may only drift by the integrator's error: RK4's local error is O(h^5), so the
+    drift must fall ~16x when h halves, and stay below 1e-12 of the largest kinetic energy at h = 1 ms."""
+    drift = {}
+    for dt in (1e-3, 2e-3):
+        r = simulate(TorqueController(), plant=NOFRICTION, duration=10.0, dt=dt, q0=Q0, qd0=[3.0, -6.0, 0.5, 6.0])
+        en = r.energy()
+        drift[dt] = np.abs(en["total"] - en["total"][0]).max()
+        scale = en["kinetic"].max()
+        assert np.abs(en["friction_work"]).max() == 0.0 and np.abs(en["input_work"]).max() == 0.0
+    _record("energy drift (J), 10 s, 1 ms", drift[1e-3])
+    _record("energy drift relative", drift[1e-3] / scale)
+    assert drift[1e-3] / scale < 1e-12
+    ratio = drift[2e-3] / drift[1e-3]
+    _record("drift ratio h=2ms / h=1ms", ratio)
+    assert 8 < ratio < 32
+
+
+def test_friction_work_balances_the_energy_lost():
+    """Released with friction and no torque: E(t) - E(0) = -int qd^T F qd dt. Simpson's rule on the 1 ms samples
+    of a smooth motion is O(h^4): the balance must close to 1e-12 of the work dissipated."""
+    r = simulate(TorqueController(), plant=P5, duration=10.0, q0=Q0, qd0=[3.0, -6.0, 0.5, 6.0])
+    en = r.energy()
+    assert np.all(np.diff(en["friction_work"]) >= 0)
+    err = np.abs(en["balance"]).max() / en["friction_work"][-1]
+    _record("friction balance (relative), free motion", err)
+    assert err < 1e-12
+
+
+def test_energy_balance_in_closed_loop(scenario):
+    """Under zero-order hold the input work over a sample is exactly tau_k^T (q_{k+1} - q_k); with the friction
+    work by Simpson's rule (qdd jumps at every sample, so the rule is only O(h^3) per interval there) the balance
+    must close to 1e-6 of the energy exchanged along the 70 s reference run."""
+    _, r = scenario
+    en = r.energy()
+    scale = en["friction_work"][-1] + abs(en["input_work"]).max()
+    err = np.abs(en["balance"]).max() / scale
+    _record("closed-loop energy balance (relative)", err)
+    assert err < 1e-6
+
+
+# --------------------------------------------------------------------------------------------------
+# against an independent integrator
+# --------------------------------------------------------------------------------------------------
+def _ivp(q0, qd0, tau, t_end, p, t_eval=None):
+    def f(_t, y):
+        return np.r_[y[4:], forward_dynamics(y[:4], y[4:], tau, p)]
+
+    return solve_ivp(f, (0.0, t_end), np.r_[q0, qd0], method="DOP853", rtol=1e-13, atol=1e-13, t_eval=t_eval)
+
+
+def test_free_motion_matches_scipy():
+    qd0 = np.array([2.0, -3.0, 0.2, 4.0])
+    r = simulate(TorqueController(), plant=P5, duration=2.0, q0=Q0, qd0=qd0)
+    sol = _ivp(Q0, qd0, np.zeros(4), 2.0, P5, t_eval=r.t[::100])
+    err = max(np.abs(sol.y[:4].T - r.q[::100]).max(), np.abs(sol.y[4:].T - r.qd[::100]).max())
+    _record("free motion vs DOP853", err)
+    assert err < 1e-9  # RK4 at 1 ms: global error ~1e-11 here; DOP853 at rtol 1e-12
+
+
+def test_zero_order_hold_matches_scipy_per_interval():
+    """The PD+gravity loop at 1 ms for 0.2 s from a 0.3 rad step: the same discrete law, the plant integrated by
+    DOP853 (rtol 1e-13) over each interval with the torque held. The difference is RK4's truncation: it must fall
+    ~16x from 1 to 2 substeps (fourth order), and stays below 1e-10 rad in q, 1e-8 rad/s in qd at 1 substep."""
+    q_d = np.array([0.5, -1.3, 0.45, 0.6])
+    c = PDGravityController()
+    g_hat = np.array([0.0, 0.0, -P0.m3 * P0.g0, 0.0])
+    worst = {}
+    for sub in (1, 2):
+        r = simulate(c, plant=P5, joint_reference=joint_setpoint(q_d, 0.2), q0=Q0, substeps=sub)
+        q, qd = Q0.copy(), np.zeros(4)
+        wq = wv = wt = 0.0
+        for k in range(len(r.t) - 1):
+            tau = c.K_P * (q_d - q) + c.K_D * (0.0 - qd) + g_hat
+            wt = max(wt, np.abs(tau - r.tau[k]).max())
+            sol = _ivp(q, qd, tau, 1e-3, P5)
+            q, qd = sol.y[:4, -1], sol.y[4:, -1]
+            wq = max(wq, np.abs(q - r.q[k + 1]).max())
+            wv = max(wv, np.abs(qd - r.qd[k + 1]).max())
+        worst[sub] = (wq, wv, wt)
+    _record("ZOH loop vs DOP853: max |dq| (rad)", worst[1][0])
+    _record("ZOH loop vs DOP853: max |dqd| (rad/s)", worst[1][1])
+    assert worst[1][0] < 1e-10 and worst[1][1] < 1e-8 and worst[1][2] < 1e-5
+    assert 8 < worst[1][1] / worst[2][1] < 32
+
+
+def test_qdd_is_the_plant_acceleration(scenario):
+    _, r = scenario
+    for k in (0, 1234, 50000, len(r.t) - 1):
+        assert np.allclose(r.qdd[k], forward_dynamics(r.q[k], r.qd[k], r.tau[k], P5), rtol=1e-13, atol=1e-12)
+
+
+def test_substeps_make_no_difference(scenario):
+    traj, r1 = scenario
+    r4 = simulate(PDGravityController(), traj, P5, substeps=4)
+    err = np.abs(r4.q - r1.q).max()
+    _record("substeps 4 vs 1 (max |dq|)", err)
+    assert err < 1e-10
+    assert np.abs(r4.tau - r1.tau).max() < 1e-6
+
+
+# --------------------------------------------------------------------------------------------------
+# PD plus gravity: theory
+# --------------------------------------------------------------------------------------------------
+def test_pd_gravity_steady_state_error_matches_theory():
+    """Held at a set point with the 5 kg payload unknown to the controller, the quill settles where
+    K_P3 e3 = g3 - g_hat3 = -m_L g0, i.e. e3 = q_d3 - q3 = -m_L g0 / K_P3; the other joints settle exactly."""
+    q_d = np.array([0.5, -1.3, 0.45, 0.6])
+    c = PDGravityController()
+    r = simulate(c, plant=P5, joint_reference=joint_setpoint(q_d, 6.0), q0=Q0)
+    e = r.joint_error[-1]
+    theory = c.steady_state_error(P5)
+    assert theory[2] == pytest.approx(-5.0 * 9.81 / 10000.0, rel=1e-15)
+    err = np.abs(e - theory).max()
+    _record("PD+g steady state vs theory (m)", err)
+    assert err < 1e-9
+    assert r.e[-1, 2] == pytest.approx(5.0 * 9.81 / 10000.0, abs=1e-9)  # e_z = z_d - z > 0: the quill sags
+    # with the model right (the controller knows the payload) the error vanishes
+    exact = PDGravityController(model=P5)
+    r2 = simulate(exact, plant=P5, joint_reference=joint_setpoint(q_d, 6.0), q0=Q0)
+    assert np.abs(r2.joint_error[-1]).max() < 1e-9
+    assert r.gravity_compensation[-1] == pytest.approx(-P0.m3 * P0.g0)
+
+
+def test_reference_scenario_steady_state(scenario):
+    """Along the SPEC section 4 scenario, the last 2 s at rest show the same vertical error."""
+    _, r = scenario
+    s = r.summary()
+    assert s["steady_state_error"][2] == pytest.approx(5.0 * 9.81 / 10000.0, abs=1e-8)
+    assert np.abs(s["steady_state_error"][[0, 1, 3]]).max() < 1e-8
+    assert r.t[-1] == pytest.approx(70.0) and r.q.shape == r.qd.shape == r.qdd.shape == r.tau.shape == (70001, 4)
+    assert np.allclose(r.x, pose(r.q, P5)) and np.allclose(r.e, r.x_d - r.x)
+    assert r.reference_kind == "joint" and r.q_d.shape == (70001, 4)
+
+
+# --------------------------------------------------------------------------------------------------
+# the interface: a controller with memory written in the test
+# --------------------------------------------------------------------------------------------------
+@control_law
+def _pid_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    g = work[0]
+    gravity_kernel(q, model, g)
+    for i in range(4):
+        e = ref[i] - q[i]
+        state[i] += dt * e
+        tau[i] = gains[i] * e + gains[4 + i] * (ref[4 + i] - qd[i]) + gains[8 + i] * state[i] + g[i]
+        signals[i] = state[i]
+    return 0
+
+
+class _PID(Controller):
+    law = staticmethod(_pid_law)
+    name = "pid_test"
+    reference_kind = "joint"
+    signal_names = ("i1", "i2", "i3", "i4")
+    work_rows = 1
+
+    def gains_array(self):
+        return np.r_[PDGravityController().gains_array(), np.full(4, 20000.0), ]
+
+    def initial_state(self):
+        return np.zeros(4)
+
+
+def test_controller_with_memory_removes_the_payload_error():
+    """Integral action (state carried by the engine) removes the sag; the integrator settles at
+    K_I3 int e3 = m_L g0, i.e. the integral of the error equals -m_L g0 / K_I3."""
+    q_d = np.array([0.5, -1.3, 0.45, 0.6])
+    r = simulate(_PID(), plant=P5, joint_reference=joint_setpoint(q_d, 15.0), q0=Q0)
+    assert abs(r.joint_error[-1, 2]) < 1e-8
+    assert r.i3[-1] == pytest.approx(-5.0 * 9.81 / 20000.0, rel=1e-6)
+    assert set(r.signals) == {"i1", "i2", "i3", "i4"}
+    with pytest.raises(AttributeError, match="signals"):
+        r.nonexistent  # noqa: B018
+
+
+@control_law
+def _task_pd_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    """Operational-space PD plus gravity: tau = J^T (K_P (x_d - x) - K_D J qd) + g_hat(q)."""
+    J = work[0:4]
+    x = work[4]
+    g = work[5]
+    v = work[6]
+    pose_kernel(q, model[DP_A1], model[DP_A2], model[DP_D0], x)
+    jacobian_kernel(q, model[DP_A1], model[DP_A2], J)
+    gravity_kernel(q, model, g)
+    for i in range(4):
+        s = 0.0
+        for j in range(4):
+            s += J[i, j] * qd[j]
+        v[i] = gains[i] * (ref[i] - x[i]) + gains[4 + i] * (ref[4 + i] - s)
+    for j in range(4):
+        s = 0.0
+        for i in range(4):
+            s += J[i, j] * v[i]
+        tau[j] = s + g[j]
+    for i in range(4):
+        signals[i] = ref[i] - x[i]
+    return 0
+
+
+class _TaskPD(Controller):
+    law = staticmethod(_task_pd_law)
+    name = "task_pd_test"
+    reference_kind = "operational"
+    signal_names = ("ex", "ey", "ez", "ephi")
+    work_rows = 7
+
+    def gains_array(self):
+        return np.array([2e4, 2e4, 1e4, 600.0, 2e3, 2e3, 1e3, 60.0])
+
+
+def test_operational_controller_gets_operational_references(scenario):
+    """An operational-space law receives [x_d, xd_d, xdd_d] rows from the trajectory and starts at the
+    trajectory's start configuration; its own error signal equals the engine's e. At rest at the end the
+    vertical sag is m_L g0 / K_P,z (J's z row is [0, 0, -1, 0])."""
+    traj, _ = scenario
+    r = simulate(_TaskPD(), traj, P5)
+    assert r.reference_kind == "operational" and r.q_d is None
+    assert np.array_equal(r.reference[:, :4], traj.x)
+    assert np.allclose(r.q[0], traj.q0, atol=1e-12)
+    assert np.allclose(np.column_stack([r.ex, r.ey, r.ez, r.ephi]), r.e, rtol=0, atol=1e-12)
+    assert r.summary()["steady_state_error"][2] == pytest.approx(5.0 * 9.81 / 1e4, abs=1e-8)
+    with pytest.raises(ScaraError, match="joint reference"):
+        r.joint_error  # noqa: B018
+
+
+@control_law
+def _failing_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    for i in range(4):
+        tau[i] = 0.0
+    return 7 if k == 250 else 0
+
+
+class _Failing(Controller):
+    law = staticmethod(_failing_law)
+    name = "failing"
+    reference_kind = "none"
+
+
+def test_failures_are_reported_with_time_and_cause():
+    with pytest.raises(UnstableError, match=r"t = 0\.2500 s .*code 7"):
+        simulate(_Failing(), duration=1.0, q0=Q0)
+    wild = PDGravityController(K_P=(1e9, 1e9, 1e9, 1e9), K_D=(0, 0, 0, 0))  # far past the 1 ms stability limit
+    with pytest.raises(UnstableError, match="diverged at t ="):
+        simulate(wild, plant=P5, joint_reference=joint_setpoint(Q0 + 0.1, 2.0), q0=Q0)
+
+
+def test_bad_inputs_are_refused():
+    c = PDGravityController()
+    ref = joint_setpoint(Q0, 0.1)
+    with pytest.raises(ScaraError, match="substeps"):
+        simulate(c, plant=P5, joint_reference=ref, substeps=0)
+    with pytest.raises(ShapeError, match="joint_reference"):
+        simulate(c, plant=P5, joint_reference=ref[:, :8])
+    with pytest.raises(ScaraError, match="needs traj or joint_reference"):
+        simulate(c, plant=P5)
+    with pytest.raises(ScaraError, match="K_P .* >= 0"):
+        PDGravityController(K_P=(-1, 1, 1, 1))
+    with pytest.raises(ScaraError, match="no compiled law"):
+        simulate(Controller.__new__(type("X", (), {"law": None})), duration=1.0, q0=Q0)
+    traj = reference_trajectory()
+    with pytest.raises(ScaraError, match="differs from the trajectory"):
+        simulate(c, traj, P5, dt=2e-3)
+
+
+def test_joint_reference_forms_agree():
+    """A (N, 12) array, a (q, qd, qdd) tuple and an object with q, qd, qdd give the same run; the closed-form
+    ikine reference of the scenario is a valid reference too."""
+    ref = joint_setpoint(Q0 + 0.05, 0.3)
+    c = PDGravityController()
+    a = simulate(c, plant=P5, joint_reference=ref, q0=Q0)
+    b = simulate(c, plant=P5, joint_reference=(ref[:, :4], ref[:, 4:8], ref[:, 8:]), q0=Q0)
+    obj = type("R", (), {"q": ref[:, :4], "qd": ref[:, 4:8], "qdd": ref[:, 8:]})()
+    d = simulate(c, plant=P5, joint_reference=obj, q0=Q0)
+    assert np.array_equal(a.q, b.q) and np.array_equal(a.q, d.q)
+
+
+def test_ikine_reference_is_consistent(scenario):
+    traj, _ = scenario
+    ref = ikine_reference(traj)
+    assert np.abs(pose(ref[::700, :4]) - traj.x[::700]).max() < 1e-12
+    # velocities by finite differences of the positions
+    fd = np.gradient(ref[:, :4], traj.dt, axis=0)
+    assert np.abs(fd[1:-1] - ref[1:-1, 4:8]).max() < 1e-4
+
+
+# --------------------------------------------------------------------------------------------------
+# the plain-Python path
+# --------------------------------------------------------------------------------------------------
+def test_plain_python_engine_gives_the_same_numbers():
+    code = ("import json, numpy as np, scara._compile as c; from scara import *; assert not c.COMPILED;"
+            "p=ScaraParams().with_payload(5.0); q0=np.array([0.2,-1.0,0.3,0.1]);"
+            "r=simulate(PDGravityController(), plant=p, joint_reference=joint_setpoint(q0+0.1, 0.05), q0=q0);"
+            "print(json.dumps(np.r_[r.q.ravel(), r.qd.ravel(), r.tau.ravel(), r.qdd.ravel()].tolist()))")
+    env = dict(os.environ, SCARA_NO_NUMBA="1")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
+    r = simulate(PDGravityController(), plant=P5, joint_reference=joint_setpoint(Q0 + 0.1, 0.05), q0=Q0)
+    ref = np.r_[r.q.ravel(), r.qd.ravel(), r.tau.ravel(), r.qdd.ravel()]
+    err = np.abs(np.array(json.loads(out)) - ref).max()
+    _record("plain Python engine vs compiled", err)
+    assert err < 1e-9  # FMA contraction in compiled code: round-off, amplified by the loop gain K_P ~ 1e4
+
+
+def test_report_max_errors():
+    """Print the largest differences met above (for the closing note)."""
+    if not MAX_ERR:
+        pytest.skip("run together with the checks above")
+    print({k: f"{v:.2e}" for k, v in MAX_ERR.items()})
+    assert "energy drift (J), 10 s, 1 ms" in MAX_ERR
+
+
+# --------------------------------------------------------------------------------------------------
+# the chapter's figures and live panel (smoke tests: they build, carry titles and units, and the panel
+# reports a bad setting instead of raising)
+# --------------------------------------------------------------------------------------------------
+def test_chapter_figures_and_panel(scenario):
+    from scara import torque_breakdown
+    from scara.plots import (energy_figure, inertia_figure, payload_slider_figure, payload_torque_figure,
+                             torque_share_figure, torque_terms_figure)
+    from scara.widgets import dynamics_panel
+
+    traj, r = scenario
+    q, qd, qdd = r.reference[:, :4], r.reference[:, 4:8], r.reference[:, 8:12]
+    parts = torque_breakdown(q, qd, qdd, P5)
+    free = simulate(TorqueController(), plant=P5, duration=0.2, q0=Q0)
+    figs = [torque_share_figure(parts), torque_terms_figure(r.t, parts, target=200),
+            payload_torque_figure(r.t, {"a": r.tau, "b": 2 * r.tau}, target=200),
+            payload_slider_figure(r.t, {0.0: r.tau, 5.0: 2 * r.tau}, target=100),
+            energy_figure(free.t, free.energy()), inertia_figure(Q0, P5, "B")]
+    for fig in figs:
+        assert fig.layout.title.text
+        assert any(ax.title.text for ax in fig.select_xaxes())
+        assert any(tr.name for tr in fig.data if tr.type != "heatmap")
+    slider_fig = figs[3]
+    assert len(slider_fig.layout.sliders[0].steps) == 2
+    assert len(slider_fig.data[0].x) <= 101 + 1
+    panel = dynamics_panel()
+    assert panel.last_error is None
+    panel.controls["theta2"].value = 30.0
+    assert panel.last_error is None
+    out = panel.render(payload=5.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4)
+    assert "4.905 mm" in out[1]  # the sag m_L g0 / K_P3 listed in the panel
+    with pytest.raises(ScaraError):  # the panel shows this message in place of the plot
+        panel.render(payload=-1.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4)
