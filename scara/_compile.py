@@ -23,6 +23,28 @@ except ImportError:  # pragma: no cover
 COMPILED = _numba is not None and os.environ.get("NUMBA_DISABLE_JIT", "0") != "1"
 
 
+def _source_digest() -> str:
+    """A digest of every source file of the package."""
+    import hashlib
+    from pathlib import Path
+
+    h = hashlib.sha1()
+    root = Path(__file__).resolve().parent
+    for f in sorted(root.rglob("*.py")):
+        h.update(str(f.relative_to(root)).encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+# numba's on-disk cache checks only the decorated function's own file: a kernel that calls kernels of
+# another module would keep running their old code after that module changed. Keying the cache folder on
+# the whole package's source makes any change start a fresh cache. A NUMBA_CACHE_DIR set by the user wins.
+if _numba is not None and not os.environ.get("NUMBA_CACHE_DIR"):
+    from pathlib import Path as _Path
+
+    _numba.config.CACHE_DIR = str(_Path(__file__).resolve().parent / "__pycache__" / f"numba-{_source_digest()}")
+
+
 def kernel(fn=None, **options):
     """Compile ``fn`` with ``numba.njit(cache=True, **options)`` when numba is available.
 
