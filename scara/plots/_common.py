@@ -49,6 +49,25 @@ def use_book_renderer() -> None:
     """
     pio.renderers["scara_book"] = _BookHtmlRenderer()
     pio.renderers.default = "plotly_mimetype+scara_book"
+    _plain_numpy_scalars()
+
+
+def _plain_numpy_scalars() -> None:
+    """Show numpy scalars as plain numbers (``22.5``, not ``np.float64(22.5)``) in IPython, so that numbers
+    glued into the text with ``myst_nb.glue`` can be formatted (``{glue:text}`name:.3f```)."""
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover
+        return
+    ip = get_ipython()
+    if ip is None:
+        return
+    import numpy as np
+
+    fmt = ip.display_formatter.formatters["text/plain"]
+    fmt.for_type(np.floating, lambda obj, pp, cycle: pp.text(repr(float(obj))))
+    fmt.for_type(np.integer, lambda obj, pp, cycle: pp.text(repr(int(obj))))
+    fmt.for_type(np.bool_, lambda obj, pp, cycle: pp.text(repr(bool(obj))))
 
 
 def base_layout(title: str | None = None, height: int = 420, **kw) -> dict:
