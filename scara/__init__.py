@@ -11,5 +11,19 @@ from .kinematics import (
 from .manipulability import (
     Ellipsoid, force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map,
 )
+from .trajectory import (
+    Arc, Line, Trajectory, Trapezoidal, Waypoint, plan_path, reference_plan, reference_trajectory, trapezoidal,
+)
+from .clik import ClikResult, TransposeStability, clik, clik2, second_order_gains, transpose_stability
+from .dynamics import (
+    PI_NAMES, coriolis, dynamic_array, dynamic_parameters, forward_dynamics, friction, gravity, inertia,
+    inverse_dynamics, kinetic_energy, params_from_pi, payload_from_pi, potential_energy, regressor, total_energy,
+    torque_breakdown,
+)
+from .simulate import (
+    Controller, PDGravityController, SimulationResult, TorqueController, control_law, ikine_reference,
+    joint_setpoint, simulate,
+)
 
 __version__ = "0.1.0"
+from .control import AdaptiveController, OperationalSpaceController, RobustController

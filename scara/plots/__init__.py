@@ -3,6 +3,34 @@ calls into the math modules. Importing this package registers the book's offline
 
 One sub-module per chapter; their public builders are re-exported here.
 """
-from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, base_layout, new_figure, slider, use_book_renderer
+from ._common import (
+    AXIS_COLOURS, JOINT_COLOURS, PALETTE, base_layout, new_figure, publish, slider, use_book_renderer,
+)
 
 use_book_renderer()
+from .kinematics import (
+    arm_figure, determinant_figure, inverse_kinematics_figure, joint_slider_figure, top_view_arm,
+)
+from .manipulability import (
+    duality_figure, ellipse_slider_figure, manipulability_map_figure, reference_ellipses_figure,
+    workspace_ellipses_figure,
+)
+from .trajectory import (
+    anticipation_slider_figure, corner_figure, joint_profiles_figure, path_figure, profiles_figure, timing_law_figure,
+    top_view_figure,
+)
+from .verification import rotor_coupling_figure, speed_figure
+from .clik import (
+    clik_error_figure, clik_joints_figure, convergence_figure, damping_figure, drift_figure, error_components_figure,
+    gain_slider_figure, manipulability_figure, second_order_figure, transpose_stability_figure,
+)
+from .dynamics import (
+    energy_figure, inertia_figure, payload_slider_figure, payload_torque_figure, torque_share_figure,
+    torque_terms_figure,
+)
+from .control import (
+    boundary_layer_slider_figure, error_norm_figure, joint_motion_figure, operational_error_figure,
+    payload_estimate_figure, payload_sweep_figure, robust_term_figure, steady_state_figure, torque_figure,
+    tuning_figure,
+)
+from .course import course_figure
