@@ -21,8 +21,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-HTML = ROOT / "_build" / "html"
-SHOTS = ROOT / "_build" / "screenshots"
+HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))  # another build can be tested
+SHOTS = HTML.parent / "screenshots"
 CHROMIUM = os.environ.get("SCARA_CHROMIUM", "/usr/bin/chromium")
 IN_CI = os.environ.get("CI", "").lower() == "true"
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -86,8 +86,15 @@ FIGURE_STATE = """() => Array.from(document.querySelectorAll('.plotly-graph-div'
   rendered: !!gd._fullLayout && gd.querySelectorAll('.main-svg').length > 0,
   traces: (gd._fullData || []).length,
   sliders: gd.querySelectorAll('.slider-container').length,
-  caption: (() => { const f = gd.closest('.cell'); return f ? f.id : ''; })()
+  caption: (() => { const f = gd.closest('figure'); const c = f && f.querySelector('figcaption');
+                    return c ? c.textContent.trim() : ''; })()
 }))"""
+
+EXERCISES = """() => {
+  const sec = document.getElementById('exercises');
+  if (!sec) return -1;
+  return sec.querySelectorAll('details.sd-dropdown, div.dropdown').length;
+}"""
 
 FIGURE_DIGEST = """(id) => {
   const gd = document.getElementById(id);
@@ -134,10 +141,16 @@ def test_page_offline(page, server, browser):
     bad = [f["id"] for f in figs if not f["rendered"] or f["traces"] == 0]
     assert not bad, f"{page}: figures not rendered: {bad}"
 
+    uncaptioned = [f["id"] for f in figs if len(f["caption"]) < 20]
+    assert not uncaptioned, f"{page}: {len(uncaptioned)} figures without a caption (use plots.publish + glue:figure)"
+
     name = Path(page).stem
     is_chapter = bool(re.match(r"\d\d_", name)) or name.startswith("appendix")
     if is_chapter:
         assert figs, f"{page}: a chapter page without any figure"
+        n_solutions = pg.evaluate(EXERCISES)
+        assert n_solutions >= 4, (f"{page}: the 'Exercises' section is missing or has fewer than four folded "
+                                  f"solutions ({n_solutions})")
         with_slider = [f for f in figs if f["sliders"]]
         assert with_slider, f"{page}: no static slider figure (every chapter needs one that works without a kernel)"
         fid = with_slider[0]["id"]
