@@ -55,3 +55,41 @@ def test_chapter_conventions(nb):
     assert re.search(r"live only|live-only", md, re.I), f"{nb.name}: the live panel is not introduced as live-only"
     assert "{dropdown}" in md or ":class: dropdown" in md, f"{nb.name}: no folded exercise solution"
     assert "glue(" in "\n".join(_src(c) for c in code), f"{nb.name}: no glued number"
+
+
+def _all_text():
+    """Markdown of every page: notebook markdown cells plus the .md pages."""
+    texts = {}
+    for nb in NOTEBOOKS:
+        texts[nb.name] = "\n".join(_src(c) for c in _cells(nb) if c["cell_type"] == "markdown")
+    for md in (ROOT / "book").glob("*.md"):
+        texts[md.name] = md.read_text()
+    return texts
+
+
+def test_every_referenced_label_is_defined():
+    """Equation labels ``$$ ... $$ (eq-x)`` / ``(eq-x)=`` and figure names ``:name: fig-x`` that the text
+    refers to with {eq}, {numref} or {ref} exist somewhere in the book (the build's -n checks it too, but
+    this names the page and the label at once)."""
+    texts = _all_text()
+    defined = set()
+    for t in texts.values():
+        defined |= set(re.findall(r"\$\$\s*\((eq-[\w-]+)\)", t))
+        defined |= set(re.findall(r"^\((\S+)\)=\s*$", t, re.M))
+        defined |= set(re.findall(r":name:\s*(\S+)", t))
+        defined |= set(re.findall(r":label:\s*(\S+)", t))
+    missing = []
+    for page, t in texts.items():
+        for role, label in re.findall(r"\{(eq|numref|ref)\}`(?:[^`<]*<)?([\w-]+)>?`", t):
+            if label not in defined:
+                missing.append(f"{page}: {{{role}}}`{label}`")
+    assert not missing, "references to labels that no page defines: " + ", ".join(missing)
+
+
+def test_cited_keys_are_in_the_bibliography():
+    bib = set(re.findall(r"@\w+\{([\w-]+),", (ROOT / "references.bib").read_text()))
+    cited = set()
+    for t in _all_text().values():
+        for group in re.findall(r"\{cite(?::\w+)?\}`([^`]+)`", t):
+            cited |= {k.strip() for k in group.split(",")}
+    assert cited <= bib, f"cited but not in references.bib: {sorted(cited - bib)}"
