@@ -1,0 +1,226 @@
+"""What the three controllers of chapter 6 share: gain checks, the bounds a run must respect, the failure
+codes of their laws, a compiled replay loop that times a law, and the figures of the chapter's table.
+
+Every law here returns one of the codes of :data:`FAILURE_CAUSES` (0 when all is well); the engine stops the
+run at the first non-zero code and :meth:`BoundedController.run` turns it into an
+:class:`~scara.UnstableError` that names the time and the cause.
+"""
+from __future__ import annotations
+
+import math
+import statistics
+import time
+
+import numpy as np
+
+from .. import _compile
+from ..errors import ScaraError, ShapeError, UnstableError, as_array
+from ..params import ScaraParams
+from ..simulate import LAW_SIGNATURE, Controller
+
+__all__ = [
+    "TAU_MAX", "MAX_ERROR", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
+    "BoundedController", "positive_gains", "control_summary", "chattering", "law_cost", "replay_law",
+]
+
+#: The stated actuator bounds (N m, N m, N, N m): a law that asks for more stops the run (code 2). They are
+#: about three times the largest torque any of the book's runs needs with a 10 kg payload.
+TAU_MAX = (200.0, 200.0, 1000.0, 50.0)
+#: The stated bound on the tracking error a law tolerates (rad or m, per component): beyond it the run is
+#: treated as lost (code 3), long before the state becomes large enough for the engine's own limit.
+MAX_ERROR = 0.05
+
+OK, TORQUE_BOUND, ERROR_BOUND, SINGULAR_JACOBIAN = 0, 2, 3, 4
+#: The meaning of each code a chapter-6 law may return.
+FAILURE_CAUSES = {
+    TORQUE_BOUND: "a commanded torque exceeded its bound tau_max",
+    ERROR_BOUND: "a tracking error component exceeded its bound max_error",
+    SINGULAR_JACOBIAN: "the Jacobian became singular (the arm reached a stretched or folded configuration)",
+}
+
+
+def positive_gains(value, name: str, n: int = 4, *, allow_inf: bool = False) -> np.ndarray:
+    """A gain given as a number, a vector of ``n`` entries or a diagonal ``n x n`` matrix, as a (n,) array.
+
+    Raises :class:`~scara.ShapeError` for another shape or a matrix with off-diagonal entries, and
+    :class:`~scara.ScaraError` for an entry that is not strictly positive (naming it), or infinite unless
+    ``allow_inf``.
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ShapeError(f"{name} must be a number, a vector of {n} numbers or a diagonal matrix, got {value!r}") from exc
+    if arr.ndim == 0:
+        arr = np.full(n, float(arr))
+    elif arr.ndim == 2:
+        if arr.shape != (n, n) or np.any(arr != np.diag(np.diag(arr))):
+            raise ShapeError(f"{name} must be a diagonal {n}x{n} matrix or a vector of {n} gains, got shape "
+                             f"{arr.shape} with off-diagonal entries")
+        arr = np.diag(arr).copy()
+    if arr.shape != (n,):
+        raise ShapeError(f"{name} must have {n} entries, got shape {arr.shape}")
+    if np.any(np.isnan(arr)) or (not allow_inf and np.any(np.isinf(arr))):
+        i = int(np.argmax(~np.isfinite(arr)))
+        raise ScaraError(f"{name}[{i}] = {arr[i]} must be a finite number")
+    if np.any(arr <= 0):
+        i = int(np.argmax(arr <= 0))
+        raise ScaraError(f"{name}[{i}] = {arr[i]:g} must be > 0 (every gain of {name} must be strictly positive)")
+    return arr.astype(float)
+
+
+class BoundedController(Controller):
+    """Base of the chapter-6 controllers: the stated bounds, the failure causes and a runner that names them.
+
+    Attributes ``tau_max`` (4,) (N m, N m, N, N m) and ``max_error`` (rad or m) are the bounds a run must
+    respect; the law returns :data:`TORQUE_BOUND` or :data:`ERROR_BOUND` when it would break one.
+    """
+
+    failure_causes = FAILURE_CAUSES
+    tau_max: np.ndarray = np.asarray(TAU_MAX)
+    max_error: float = MAX_ERROR
+
+    def _set_bounds(self, tau_max, max_error):
+        self.tau_max = positive_gains(TAU_MAX if tau_max is None else tau_max, "tau_max")
+        if max_error is None:
+            max_error = MAX_ERROR
+        self.max_error = float(positive_gains(max_error, "max_error", 1)[0])
+
+    def _bounds_array(self) -> np.ndarray:
+        return np.concatenate([self.tau_max, [self.max_error]])
+
+    def explain(self, code: int) -> str:
+        """The cause behind a law's return code (see :data:`FAILURE_CAUSES`)."""
+        return self.failure_causes.get(int(code), f"the law returned the unknown code {int(code)}")
+
+    def run(self, traj=None, plant: ScaraParams | None = None, **kwargs):
+        """``scara.simulate(self, traj, plant, **kwargs)``, with a failure of the law explained.
+
+        The engine stops a run at the first sample where the law returns a non-zero code and reports the
+        time and the code; this re-raises its :class:`~scara.UnstableError` with the cause spelled out
+        (torque bound, error bound, singular Jacobian). Returns the :class:`~scara.simulate.SimulationResult`.
+        """
+        from ..simulate import simulate  # noqa: PLC0415
+
+        try:
+            return simulate(self, traj, plant, **kwargs)
+        except UnstableError as exc:
+            msg = str(exc)
+            marker = "returned code "
+            if marker in msg:
+                code = int(msg.split(marker, 1)[1].split()[0].rstrip(".,;:)"))
+                bound = ""
+                if code == TORQUE_BOUND:
+                    bound = f" (tau_max = {self.tau_max.tolist()})"
+                elif code == ERROR_BOUND:
+                    bound = f" (max_error = {self.max_error:g})"
+                raise UnstableError(f"{msg}: {self.explain(code)}{bound}") from None
+            raise
+
+
+# --------------------------------------------------------------------------------------------------
+# replaying a law on recorded samples: its own cost per step, and a check against another implementation
+# --------------------------------------------------------------------------------------------------
+def _replay(law, q, qd, ref, dt, gains, model, state, work, sig, tau):
+    n = q.shape[0]
+    for k in range(n):
+        code = law(k, k * dt, dt, q[k], qd[k], ref[k], gains, model, state, work, sig[k], tau[k])
+        if code != 0:
+            return k
+    return -1
+
+
+if _compile.COMPILED:
+    from numba import types as _t
+
+    _v = _t.float64[::1]
+    _m = _t.float64[:, ::1]
+    _replay_kernel = _compile._numba.njit(
+        _t.int64(_t.FunctionType(LAW_SIGNATURE), _m, _m, _m, _t.float64, _v, _v, _v, _m, _m, _m), cache=True)(_replay)
+else:  # pragma: no cover - plain Python
+    _replay_kernel = _replay
+
+
+def replay_law(controller, result, n: int | None = None):
+    """Run ``controller``'s law alone on the states a run recorded (no plant): ``(tau, signals, state)``.
+
+    The law sees the measured ``q``, ``qd`` and the reference of ``result`` sample by sample, starting from
+    ``controller.initial_state()``; its torques (n, 4) must equal ``result.tau`` when the same controller
+    produced the run. Used to time the law (:func:`law_cost`) and to check it against another
+    implementation.
+    """
+    n = len(result.t) if n is None else int(n)
+    q = np.ascontiguousarray(result.q[:n])
+    qd = np.ascontiguousarray(result.qd[:n])
+    ref = np.ascontiguousarray(result.reference[:n])
+    gains = np.ascontiguousarray(controller.gains_array(), dtype=float)
+    model = np.ascontiguousarray(controller.model_array(), dtype=float)
+    state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
+    work = np.zeros((max(int(controller.work_rows), 1), 4))
+    sig = np.zeros((n, len(controller.signal_names)))
+    tau = np.zeros((n, 4))
+    k = _replay_kernel(controller.law, q, qd, ref, float(result.dt), gains, model, state, work, sig, tau)
+    if k >= 0:
+        raise UnstableError(f"the law of {controller.name} returned a failure at sample {k} while replaying")
+    return tau, sig, state
+
+
+def law_cost(controller, result, repeats: int = 7) -> float:
+    """Compute time of one control step of ``controller``'s compiled law (s): the median over ``repeats``
+    replays of the recorded run (:func:`replay_law`) divided by the number of samples. It includes the call
+    through the engine's function pointer, as in a real run, and nothing of the plant."""
+    n = len(result.t)
+    replay_law(controller, result, min(n, 100))  # warm up
+    times = []
+    for _ in range(max(1, int(repeats))):
+        t0 = time.perf_counter()
+        replay_law(controller, result)
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times) / n
+
+
+# --------------------------------------------------------------------------------------------------
+# the chapter's figures of merit
+# --------------------------------------------------------------------------------------------------
+def chattering(result) -> float:
+    """Chattering measure of a run: the RMS over the run of the norm of the torque's second difference
+    ``tau_{k+1} - 2 tau_k + tau_{k-1}`` (N m and N together, like ``||z||`` mixes units).
+
+    A smooth torque changes by ``O(dt^2)`` in its second difference (about ``1e-4`` here); a torque that
+    switches sign every sample of amplitude ``A`` gives ``4 A``.
+    """
+    tau = np.asarray(result.tau, dtype=float)
+    if len(tau) < 3:
+        return 0.0
+    d2 = tau[2:] - 2.0 * tau[1:-1] + tau[:-2]
+    return float(np.sqrt(np.mean(np.sum(d2 ** 2, axis=1))))
+
+
+def control_summary(result, controller=None, *, settle: float = 1.0, rest: float = 2.0,
+                    repeats: int = 5) -> dict:
+    """The row of the chapter's comparison table for one run.
+
+    Keys: ``controller``; ``max_error`` and ``rms_error`` (m): largest and RMS norm of the position error
+    ``x_d - x_e`` (x, y, z) after the first ``settle`` seconds; ``max_phi_error`` (rad) after ``settle``;
+    ``final_error`` (m): largest position-error norm over the final rest (the last ``rest`` seconds, where the
+    arm is still); ``final_error_z`` (m): mean vertical error there (signed); ``peak_tau`` (4,) largest absolute
+    torques (N m, N m, N, N m); ``chattering`` (:func:`chattering`); ``step_cost`` (s): compute time per
+    control step (:func:`law_cost`; only when ``controller`` is given, else NaN).
+    """
+    t = np.asarray(result.t)
+    e = np.asarray(result.e)
+    pos = np.linalg.norm(e[:, :3], axis=1)
+    after = t >= t[0] + settle - 1e-12
+    if not after.any():
+        raise ScaraError(f"the run lasts {t[-1] - t[0]:g} s: nothing after settle = {settle:g} s")
+    last = t >= t[-1] - rest + 1e-12
+    return {
+        "controller": getattr(result, "controller", ""),
+        "max_error": float(pos[after].max()),
+        "rms_error": float(np.sqrt(np.mean(pos[after] ** 2))),
+        "max_phi_error": float(np.abs(e[after, 3]).max()),
+        "final_error": float(pos[last].max()),
+        "final_error_z": float(e[last, 2].mean()),
+        "peak_tau": np.abs(result.tau).max(axis=0),
+        "chattering": chattering(result),
+        "step_cost": law_cost(controller, result, repeats) if controller is not None else math.nan,
+    }

@@ -1,0 +1,156 @@
+"""Adaptive control in joint space: the Slotine-Li law (Siciliano et al., sec. 8.5.4), discrete-time.
+
+    qd_r = qd_d + Lambda qt,   qdd_r = qdd_d + Lambda qt_dot,   sigma = qd_r - qd = qt_dot + Lambda qt
+    u = Y(q, qd, qd_r, qdd_r) pi_hat + K_D sigma
+    pi_hat_dot = K_pi^-1 Y^T sigma           (discretised: pi_hat_{k+1} = pi_hat_k + dt K_pi^-1 Y_k^T sigma_k)
+
+``Y`` and ``pi`` are the linear parametrisation of :mod:`scara.dynamics` (``pi[0] = m3 = m_l3 + m_L``, the
+lumped mass on the joint-3/4 axis). ``K_pi`` is diagonal; an infinite entry freezes its parameter at the
+initial estimate, so ``K_pi`` chooses which parameters adapt. The initial estimate is the controller's own
+model (no payload), and the payload estimate ``pi_hat[0] - m_l3`` is recorded at every sample.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..dynamics import DP_ML3, N_PI, PI_NAMES, dynamic_parameters, regressor_kernel
+from ..errors import ScaraError, ShapeError
+from ..kinematics import _params
+from ..params import ScaraParams
+from ..simulate import control_law
+from ._common import BoundedController, positive_gains
+
+__all__ = ["AdaptiveController", "adaptation_gains"]
+
+
+def adaptation_gains(K_pi) -> np.ndarray:
+    """``K_pi^-1`` (13,) from ``K_pi`` given as a number (only ``m3`` adapts), a dict ``{name: value}`` over
+    :data:`~scara.dynamics.PI_NAMES` (the others frozen), or 13 entries where ``inf`` freezes a parameter.
+
+    Raises :class:`~scara.ScaraError` for a non-positive entry or an unknown name, and when nothing adapts.
+    """
+    if isinstance(K_pi, dict):
+        full = np.full(N_PI, np.inf)
+        for key, val in K_pi.items():
+            if key not in PI_NAMES:
+                raise ScaraError(f"K_pi names {key!r}, which is not a parameter; choose from {PI_NAMES}")
+            full[PI_NAMES.index(key)] = float(positive_gains(val, f"K_pi[{key!r}]", 1)[0])
+        K_pi = full
+    arr = np.asarray(K_pi, dtype=float)
+    if arr.ndim == 0:
+        full = np.full(N_PI, np.inf)
+        full[0] = arr
+        arr = full
+    if arr.shape != (N_PI,):
+        raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got shape {arr.shape}")
+    arr = positive_gains(arr, "K_pi", N_PI, allow_inf=True)
+    if np.all(np.isinf(arr)):
+        raise ScaraError("K_pi freezes every parameter (all entries infinite): nothing would adapt")
+    return 1.0 / arr
+
+
+# gains layout: Lambda 0:4, K_D 4:8, K_pi^-1 8:21, tau_max 21:25, max_error 25
+_G_KPI, _G_TMAX, _G_EMAX = 8, 8 + N_PI, 12 + N_PI
+
+
+@control_law
+def adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    """Slotine-Li step (module docstring). ``state = pi_hat`` (13,), updated in place after ``u`` is formed.
+
+    ``signals = [payload_estimate, ||sigma||]`` (kg, mixed units), the estimate being the one used at ``t``.
+    Returns 0, 2 (torque beyond ``tau_max``) or 3 (a joint error beyond ``max_error``).
+    """
+    Y = work[0:13].reshape((4, 13))
+    qd_r = work[13]
+    qdd_r = work[14]
+    sigma = work[15]
+    emax = gains[_G_EMAX]
+    ns = 0.0
+    for i in range(4):
+        qt = ref[i] - q[i]
+        if not abs(qt) <= emax:
+            return 3
+        lam = gains[i]
+        qd_r[i] = ref[4 + i] + lam * qt
+        qdd_r[i] = ref[8 + i] + lam * (ref[4 + i] - qd[i])
+        sigma[i] = qd_r[i] - qd[i]
+        ns += sigma[i] * sigma[i]
+    regressor_kernel(q, qd, qd_r, qdd_r, model, Y)
+    signals[0] = state[0] - model[DP_ML3]
+    signals[1] = np.sqrt(ns)
+    code = 0
+    for i in range(4):
+        u = gains[4 + i] * sigma[i]
+        for j in range(13):
+            u += Y[i, j] * state[j]
+        tau[i] = u
+        if not abs(u) <= gains[_G_TMAX + i]:
+            code = 2
+    for j in range(13):
+        gj = gains[_G_KPI + j]
+        if gj != 0.0:
+            s = 0.0
+            for i in range(4):
+                s += Y[i, j] * sigma[i]
+            state[j] += dt * gj * s
+    return code
+
+
+class AdaptiveController(BoundedController):
+    """Slotine-Li adaptive joint-space controller (module docstring). Tracks the joint reference of the
+    second-order CLIK; the payload estimate is ``result.payload_estimate`` (kg, one per sample).
+
+    Parameters
+    ----------
+    Lambda : 4 positive gains (1/s), default 30: ``sigma = qt_dot + Lambda qt``, so an error decays as
+        ``exp(-lambda t)`` once ``sigma`` is zero.
+    K_D : 4 positive gains (N m s/rad, N s/m), default ``(600, 300, 1000, 60)``: about ``2 x 20 rad/s`` times
+        each joint's inertia, so ``B sigma_dot = -K_D sigma + ...`` settles in a few tens of ms.
+    K_pi : adaptation weights (see :func:`adaptation_gains`), default ``{"m3": 0.01}``: only the lumped mass
+        ``m3 = m_l3 + m_L`` adapts (the payload is the only unknown). With the weight ``g0`` of ``Y`` on the
+        quill, the estimate and ``sigma_3`` form a second-order loop of natural frequency
+        ``g0 / sqrt(K_pi B33)`` (about 19 rad/s), damped by ``K_D3 / B33``.
+    model : ScaraParams, default ``ScaraParams()``: the initial estimate ``pi_hat(0) = dynamic_parameters(model)``
+        (no payload), and the geometry and ``g0`` inside ``Y``.
+    tau_max, max_error : the stated bounds.
+
+    >>> c = AdaptiveController()
+    >>> float(c.initial_state()[0])   # m3 estimate at t = 0: the quill alone
+    10.0
+    """
+
+    law = staticmethod(adaptive_law)
+    name = "adaptive"
+    reference_kind = "joint"
+    signal_names = ("payload_estimate", "sigma_norm")
+    work_rows = 16
+
+    def __init__(self, Lambda=30.0, K_D=(600.0, 300.0, 1000.0, 60.0), K_pi=None, model: ScaraParams | None = None,
+                 tau_max=None, max_error=None):
+        self.Lambda = positive_gains(Lambda, "Lambda")
+        self.K_D = positive_gains(K_D, "K_D")
+        self.K_pi_inv = adaptation_gains({"m3": 0.01} if K_pi is None else K_pi)
+        self.model = _params(model)
+        self._set_bounds(tau_max, max_error)
+
+    @property
+    def adapted(self) -> tuple:
+        """Names of the parameters that adapt."""
+        return tuple(n for n, g in zip(PI_NAMES, self.K_pi_inv) if g > 0)
+
+    def gains_array(self) -> np.ndarray:
+        return np.concatenate([self.Lambda, self.K_D, self.K_pi_inv, self._bounds_array()])
+
+    def initial_state(self) -> np.ndarray:
+        return dynamic_parameters(self.model)
+
+    @staticmethod
+    def final_estimate(result) -> np.ndarray:
+        """The parameter estimate ``pi_hat`` (13,) at the end of a run of this controller."""
+        return np.asarray(result.extra["final_state"][:N_PI]).copy()
+
+    def __repr__(self):
+        return (f"AdaptiveController(Lambda={self.Lambda.tolist()}, K_D={self.K_D.tolist()}, "
+                f"adapted={self.adapted})")

@@ -1,0 +1,189 @@
+"""Inverse dynamics control in the operational space, with integral action (Siciliano et al., sec. 8.6.2),
+discrete-time at the sampling period.
+
+    xt = x_d - x_e(q),   xt_dot = xd_d - J_A(q) qd,   s_k = dt sum_{j<k} xt_j   (the integral, forward Euler)
+    y = J_A^-1 (xdd_d + K_D xt_dot + K_P xt + K_I s - Jdot_A qd)
+    u = B_hat(q) y + n_hat(q, qd),        n_hat = C_hat(q, qd) qd + F qd + g_hat(q)
+
+``B_hat``, ``C_hat``, ``g_hat`` come from the controller's own model, which does not know the payload. With
+``K_I = 0`` (``integral=False``) the uncompensated weight ``m_L g0`` leaves, at rest, the vertical error
+``xt_z = m_L g0 / (B33_hat K_P,z)`` (SPEC section 5); the integral removes it.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..dynamics import (DP_A1, DP_A2, DP_D0, DP_FM, DP_G0, DP_KR, DP_ML, DP_ML3, coriolis_vector_kernel,
+                        inertia_kernel)
+from ..errors import UnstableError
+from ..kinematics import _params
+from ..params import ScaraParams
+from ..simulate import control_law
+from ._common import BoundedController, positive_gains
+
+__all__ = ["OperationalSpaceController"]
+
+# gains layout: K_P 0:4, K_D 4:8, K_I 8:12, tau_max 12:16, max_error 16
+_G_TMAX, _G_EMAX = 12, 16
+
+
+@control_law
+def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    """Operational-space inverse dynamics step (module docstring). ``ref = [x_d, xd_d, xdd_d]``; ``state`` is
+    the integral ``s`` (4,) of the error, updated after ``u`` is formed.
+
+    The kinematics of SPEC section 2 are written out once here (one sine and cosine each of ``theta1``,
+    ``theta1 + theta2``): ``x_e``, ``J_A qd``, ``Jdot_A qd = [-(a1 c1 w1^2 + a2 c12 w12^2), a1 s1 w1^2 + a2 s12
+    w12^2, 0, 0]`` (``w1 = qd1``, ``w12 = qd1 + qd2``), and ``J_A y = a`` is solved by its block structure: the
+    planar 2x2 block (determinant ``-a1 a2 sin theta2``) for ``y1, y2``, then ``y3 = -a_z`` and
+    ``y4 = a_phi - y1 - y2``. The tests check all of it against :func:`~scara.jacobian` and numpy.
+
+    ``signals = K_I s`` (4,) (m/s^2, rad/s^2): the integral action. Returns 0, 2 (torque beyond ``tau_max``),
+    3 (an operational error beyond ``max_error``) or 4 (singular Jacobian).
+    """
+    B = work[0:4]
+    a = work[4]
+    y = work[5]
+    c = work[6]
+    xt = work[7]
+    a1 = model[DP_A1]
+    a2 = model[DP_A2]
+    s1 = math.sin(q[0])
+    c1 = math.cos(q[0])
+    s12 = math.sin(q[0] + q[1])
+    c12 = math.cos(q[0] + q[1])
+    w1 = qd[0]
+    w12 = qd[0] + qd[1]
+    # pose, velocity J_A qd and Jdot_A qd
+    px = a1 * c1 + a2 * c12
+    py = -(a1 * s1 + a2 * s12)
+    J11 = py
+    J12 = -a2 * s12
+    J21 = -px
+    J22 = -a2 * c12
+    xt[0] = ref[0] - px
+    xt[1] = ref[1] - py
+    xt[2] = ref[2] - (model[DP_D0] - q[2])
+    xt[3] = ref[3] - (q[0] + q[1] + q[3])
+    v0 = J11 * qd[0] + J12 * qd[1]
+    v1 = J21 * qd[0] + J22 * qd[1]
+    v2 = -qd[2]
+    v3 = qd[0] + qd[1] + qd[3]
+    jd0 = -(a1 * c1 * w1 * w1 + a2 * c12 * w12 * w12)
+    jd1 = a1 * s1 * w1 * w1 + a2 * s12 * w12 * w12
+    emax = gains[_G_EMAX]
+    for i in range(4):
+        if not abs(xt[i]) <= emax:
+            return 3
+        ia = gains[8 + i] * state[i]
+        signals[i] = ia
+        a[i] = ref[8 + i] + gains[i] * xt[i] + ia
+    a[0] += gains[4] * (ref[4] - v0) - jd0
+    a[1] += gains[5] * (ref[5] - v1) - jd1
+    a[2] += gains[6] * (ref[6] - v2)
+    a[3] += gains[7] * (ref[7] - v3)
+    # y = J_A^-1 a
+    det = J11 * J22 - J12 * J21
+    if not abs(det) > 1e-12 * a1 * a2:
+        return 4
+    y[0] = (J22 * a[0] - J12 * a[1]) / det
+    y[1] = (J11 * a[1] - J21 * a[0]) / det
+    y[2] = -a[2]
+    y[3] = a[3] - y[0] - y[1]
+    # u = B_hat y + C_hat qd + F qd + g_hat
+    inertia_kernel(q, model, B)
+    coriolis_vector_kernel(q, qd, qd, model, c)
+    m3g = (model[DP_ML3] + model[DP_ML]) * model[DP_G0]
+    code = 0
+    for i in range(4):
+        u = c[i] + model[DP_KR + i] * model[DP_KR + i] * model[DP_FM + i] * qd[i]
+        for j in range(4):
+            u += B[i, j] * y[j]
+        if i == 2:
+            u -= m3g
+        tau[i] = u
+        if not abs(u) <= gains[_G_TMAX + i]:
+            code = 2
+    for i in range(4):
+        state[i] += dt * xt[i]
+    return code
+
+
+class OperationalSpaceController(BoundedController):
+    """Operational-space inverse dynamics control with (``integral=True``) or without integral action
+    (module docstring). Tracks the operational reference ``[x_d, xd_d, xdd_d]`` directly.
+
+    Parameters
+    ----------
+    integral : bool, default True.
+    K_P, K_D, K_I : 4 positive gains each (1/s^2, 1/s, 1/s^3), per component ``[x, y, z, phi]``. Defaults
+        ``K_P = 1200``, ``K_D = 60``, ``K_I = 8000``: with the integral, ``(s + 20)^3`` is the nominal error
+        polynomial ``s^3 + K_D s^2 + K_P s + K_I`` (a triple pole at 20 rad/s). ``K_I`` is ignored when
+        ``integral=False``.
+    model : ScaraParams, default ``ScaraParams()`` (no payload): ``B_hat``, ``C_hat``, ``g_hat``.
+    tau_max, max_error : the stated bounds.
+
+    Raises :class:`~scara.ScaraError` for non-positive gains and :class:`~scara.UnstableError` when the
+    nominal error polynomial is not Hurwitz (``K_D K_P <= K_I``).
+
+    >>> float(OperationalSpaceController().steady_state_error(ScaraParams().with_payload(5.0))[2])  # integral
+    0.0
+    >>> round(1e3 * float(OperationalSpaceController(integral=False).steady_state_error(
+    ...     ScaraParams().with_payload(5.0))[2]), 4)                                            # mm
+    1.8173
+    """
+
+    law = staticmethod(operational_law)
+    reference_kind = "operational"
+    signal_names = ("integral_action_x", "integral_action_y", "integral_action_z", "integral_action_phi")
+    work_rows = 8
+
+    def __init__(self, integral: bool = True, K_P=1200.0, K_D=60.0, K_I=8000.0, model: ScaraParams | None = None,
+                 tau_max=None, max_error=None):
+        self.integral = bool(integral)
+        self.K_P = positive_gains(K_P, "K_P")
+        self.K_D = positive_gains(K_D, "K_D")
+        if self.integral:
+            self.K_I = positive_gains(K_I, "K_I")
+            bad = self.K_D * self.K_P <= self.K_I
+            if bad.any():
+                i = int(np.argmax(bad))
+                raise UnstableError(
+                    f"K_I[{i}] = {self.K_I[i]:g} must be < K_D[{i}] K_P[{i}] = {self.K_D[i] * self.K_P[i]:g}: the error "
+                    f"polynomial s^3 + K_D s^2 + K_P s + K_I has roots in the right half-plane (Routh)")
+        else:
+            self.K_I = np.zeros(4)
+        self.name = "operational" if self.integral else "operational_noint"
+        self.model = _params(model)
+        self._set_bounds(tau_max, max_error)
+
+    def gains_array(self) -> np.ndarray:
+        return np.concatenate([self.K_P, self.K_D, self.K_I, self._bounds_array()])
+
+    def initial_state(self) -> np.ndarray:
+        return np.zeros(4)
+
+    def steady_state_error(self, plant: ScaraParams, q=None) -> np.ndarray:
+        """Operational error ``x_d - x_e`` (4,) (m, m, m, rad) left at rest by the payload the model misses.
+
+        At rest ``B_hat y = g(q) - g_hat(q)`` and ``J_A y = K_P xt``: without the integral this gives
+        ``xt = K_P^-1 J_A B_hat^-1 (g - g_hat)``, whose vertical entry is ``m_L g0 / (B33_hat K_P,z)`` up to the
+        small coupling ``B13 = B23`` of the rotor of motor 3 (a relative 3e-4 here); with it, zero.
+        ``q`` (default ``[0, -pi/2, 0.5, 0]``) matters only through that coupling.
+        """
+        plant = _params(plant)
+        if self.integral:
+            return np.zeros(4)
+        from ..dynamics import gravity, inertia  # noqa: PLC0415
+        from ..kinematics import jacobian  # noqa: PLC0415
+
+        if q is None:
+            q = np.array([0.0, -np.pi / 2, 0.5, 0.0])
+        y = np.linalg.solve(inertia(q, self.model), gravity(q, plant) - gravity(q, self.model))
+        return jacobian(q, self.model) @ y / self.K_P
+
+    def __repr__(self):
+        return (f"OperationalSpaceController(integral={self.integral}, K_P={self.K_P.tolist()}, "
+                f"K_D={self.K_D.tolist()}, K_I={self.K_I.tolist()})")

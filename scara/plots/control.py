@@ -1,0 +1,332 @@
+"""Figures of chapter 6 (control with an unknown payload): joint motion, operational errors and torques of each
+controller, the adaptive payload estimate, the robust term and its boundary layer (with a static slider over
+``epsilon``), the steady-state error with and without integral action, the error against the payload mass, and
+the live panel's summary figure.
+
+Builders take :class:`scara.simulate.SimulationResult` objects (a dict ``{label: result}`` where several are
+compared) and compute nothing but what they draw. Long runs are thinned to about ``points`` samples per trace;
+error curves on log axes keep the largest value of each thinned interval (an envelope), so no peak is lost.
+"""
+from __future__ import annotations
+
+import numpy as np
+import plotly.graph_objects as go
+from plotly.subplots import make_subplots
+
+from ..errors import ScaraError
+from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, slider
+from .clik import _method_menu, envelope, thin
+from .kinematics import _layout
+
+__all__ = [
+    "CONTROLLER_LABELS", "joint_motion_figure", "operational_error_figure", "error_norm_figure", "torque_figure",
+    "payload_estimate_figure", "robust_term_figure", "boundary_layer_slider_figure", "steady_state_figure",
+    "payload_sweep_figure", "tuning_figure",
+]
+
+#: legend names of the controllers (keys: the controllers' ``name``, also the keys of ``PALETTE``)
+CONTROLLER_LABELS = {
+    "robust": "robust",
+    "adaptive": "adaptive (Slotine-Li)",
+    "operational": "operational ID + integral",
+    "operational_noint": "operational ID, no integral",
+    "pd_gravity": "PD + gravity",
+}
+_JOINTS = ("θ1", "θ2", "d3", "θ4")
+_COMPONENTS = ("x", "y", "z", "φ")
+_FLOOR = 1e-12
+
+
+def _f(a):
+    """Plot data as float32: half the page weight, 7 significant digits (ample on screen)."""
+    return np.asarray(a, dtype=np.float32)
+
+
+def _name(r) -> str:
+    return getattr(r, "controller", "") or "controller"
+
+
+def _label(r) -> str:
+    return CONTROLLER_LABELS.get(_name(r), _name(r))
+
+
+def _colour(r) -> str:
+    return PALETTE.get(_name(r), PALETTE["reference"])
+
+
+def _as_dict(results) -> dict:
+    if hasattr(results, "tau") and hasattr(results, "e"):
+        return {_label(results): results}
+    if isinstance(results, dict):
+        out = dict(results)
+    else:
+        out = {_label(r): r for r in results}
+    if not out or not all(hasattr(r, "tau") and hasattr(r, "e") for r in out.values()):
+        raise ScaraError("expected a SimulationResult or a list/dict of SimulationResult objects")
+    return out
+
+
+def _line(x, y, name, colour, width=1.5, dash=None, showlegend=True, legendgroup=None, **kw):
+    return go.Scatter(x=_f(x), y=_f(y), mode="lines", name=name, showlegend=showlegend, legendgroup=legendgroup,
+                      line=dict(color=colour, width=width, dash=dash), **kw)
+
+
+def joint_motion_figure(results, points: int = 350, title: str | None = None, height: int = 700) -> go.Figure:
+    """Joint positions, velocities and accelerations (rows) of each run, one run at a time (dropdown): revolute
+    joints on the left (rad, rad/s, rad/s^2), the prismatic joint d3 on the right (m, m/s, m/s^2)."""
+    runs = _as_dict(results)
+    fig = make_subplots(rows=3, cols=2, shared_xaxes=True, column_widths=[0.62, 0.38], horizontal_spacing=0.1,
+                        vertical_spacing=0.06)
+    groups, titles = [], []
+    for label, r in runs.items():
+        idx = thin(len(r.t), points)
+        start = len(fig.data)
+        for row, data in enumerate((r.q, r.qd, r.qdd), start=1):
+            for j in range(4):
+                fig.add_trace(_line(r.t[idx], data[idx, j], _JOINTS[j], JOINT_COLOURS[j], legendgroup=_JOINTS[j],
+                                    showlegend=row == 1), row=row, col=2 if j == 2 else 1)
+        groups.append(list(range(start, len(fig.data))))
+        titles.append((title or "Joint motion") + f", {label}")
+    _method_menu(fig, groups, titles)
+    fig.update_layout(**_layout(titles[0], height))
+    for row, (u1, u2) in enumerate((("q (rad)", "d3 (m)"), ("q̇ (rad/s)", "ḋ3 (m/s)"),
+                                   ("q̈ (rad/s²)", "d̈3 (m/s²)")), start=1):
+        fig.update_yaxes(title_text=u1, row=row, col=1)
+        fig.update_yaxes(title_text=u2, row=row, col=2)
+    fig.update_xaxes(title_text="t (s)", row=3, col=1)
+    fig.update_xaxes(title_text="t (s)", row=3, col=2)
+    return fig
+
+
+def operational_error_figure(results, points: int = 600, title: str | None = None, height: int = 600) -> go.Figure:
+    """Operational error ``x_d - x_e`` of each run, one run at a time (dropdown): the components x, y, z (mm)
+    and phi (mrad) on top, the norm of the position error (m, log scale, envelope) below."""
+    runs = _as_dict(results)
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
+    groups, titles = [], []
+    for label, r in runs.items():
+        idx = thin(len(r.t), points)
+        start = len(fig.data)
+        for i in range(4):
+            name = f"e_{_COMPONENTS[i]} ({'mrad' if i == 3 else 'mm'})"
+            fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], name, AXIS_COLOURS[i]), row=1, col=1)
+        tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
+        fig.add_trace(_line(tt, yy, "‖e_p‖ (m)", _colour(r), width=2), row=2, col=1)
+        groups.append(list(range(start, len(fig.data))))
+        titles.append((title or "Operational error x_d − x_e") + f", {label}")
+    _method_menu(fig, groups, titles)
+    fig.update_layout(**_layout(titles[0], height))
+    fig.update_yaxes(title_text="e (mm, mrad)", row=1, col=1)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    return fig
+
+
+def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int = 420,
+                      settle: float | None = 1.0) -> go.Figure:
+    """The norm of the position error ``||p_d - p_e||`` (m, log scale, envelope) of several runs together; a
+    dotted line marks the end of the first ``settle`` seconds that the comparison table leaves out."""
+    runs = _as_dict(results)
+    fig = go.Figure()
+    for label, r in runs.items():
+        tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
+        fig.add_trace(_line(tt, yy, label, _colour(r), width=1.8))
+    if settle:
+        fig.add_vline(x=settle, line=dict(color="#777777", dash="dot", width=1))
+    fig.update_layout(**_layout(title or "Position error of each controller (5 kg payload, unknown to them)", height))
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖p_d − p_e‖ (m)")
+    fig.update_xaxes(title_text="t (s)")
+    return fig
+
+
+def torque_figure(results, points: int = 500, title: str | None = None, height: int = 600) -> go.Figure:
+    """The torques and the quill's force (one panel per joint: N m, N m, N, N m) of several runs overlaid."""
+    runs = _as_dict(results)
+    names = ("τ1 (N m)", "τ2 (N m)", "f3 (N)", "τ4 (N m)")
+    fig = make_subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.12, horizontal_spacing=0.1,
+                        subplot_titles=[f"joint {j + 1}" for j in range(4)])
+    for n, (label, r) in enumerate(runs.items()):
+        idx = thin(len(r.t), points)
+        for j in range(4):
+            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, _colour(r), width=1.3, legendgroup=label,
+                                showlegend=j == 0, dash=("solid", "dash", "dot", "dashdot")[n % 4]),
+                          row=j // 2 + 1, col=j % 2 + 1)
+    fig.update_layout(**_layout(title or "Joint torques and the quill's force", height, subplot_titles=True))
+    for j in range(4):
+        fig.update_yaxes(title_text=names[j], row=j // 2 + 1, col=j % 2 + 1)
+        if j >= 2:
+            fig.update_xaxes(title_text="t (s)", row=2, col=j % 2 + 1)
+    return fig
+
+
+def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, points: int = 1000,
+                            title: str | None = None, height: int = 520) -> go.Figure:
+    """The adaptive payload estimate: its first ``horizon`` seconds against the true mass (top, kg), and the
+    estimation error ``|m_hat - m_L|`` over the whole run (bottom, kg, log scale)."""
+    if "payload_estimate" not in getattr(result, "signals", {}):
+        raise ScaraError("this run carries no payload_estimate: it is not an adaptive run")
+    est = result.payload_estimate
+    t = result.t
+    fig = make_subplots(rows=2, cols=1, vertical_spacing=0.14, row_heights=[0.55, 0.45])
+    first = t <= horizon + 1e-12
+    idx = np.flatnonzero(first)[thin(int(first.sum()), points)]
+    fig.add_trace(_line(t[idx], est[idx], "estimate m̂_L", _colour(result), width=2), row=1, col=1)
+    fig.add_trace(_line([0, horizon], [true_mass, true_mass], f"true payload {true_mass:g} kg",
+                        PALETTE["reference"], dash="dash", width=1.2), row=1, col=1)
+    tt, yy = envelope(t, est - true_mass, points)
+    fig.add_trace(_line(tt, yy, "|m̂_L − m_L|", AXIS_COLOURS[1], width=1.5), row=2, col=1)
+    fig.update_layout(**_layout(title or "Adaptive control: the payload estimate", height))
+    fig.update_yaxes(title_text="m̂_L (kg)", row=1, col=1)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="|m̂_L − m_L| (kg)", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=1, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    return fig
+
+
+def robust_term_figure(result, epsilon: float, window: tuple | None = None, points: int = 1500,
+                       title: str | None = None, height: int = 560) -> go.Figure:
+    """The robust term: ``||z||`` against the boundary layer ``epsilon`` (top, log scale) and the components
+    of ``w`` (bottom, rad/s^2 and m/s^2), over ``window = (t0, t1)`` (s; default the whole run)."""
+    t = result.t
+    sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
+    idx = np.flatnonzero(sel)
+    z = result.z_norm[idx]
+    w = np.column_stack([result.signals[f"w_{i}"] for i in range(1, 5)])[idx]
+    tt, zz = envelope(t[idx], z, points)
+    sub = idx[thin(len(idx), points)]
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    fig.add_trace(_line(tt, zz, "‖z‖", _colour(result), width=1.5), row=1, col=1)
+    fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"ε = {epsilon:g}", PALETTE["reference"],
+                        dash="dash", width=1.2), row=1, col=1)
+    for j in range(4):
+        fig.add_trace(_line(t[sub], w[np.searchsorted(idx, sub), j], f"w_{j + 1}", JOINT_COLOURS[j], width=1.2),
+                      row=2, col=1)
+    fig.update_layout(**_layout(title or "Robust control: the sliding variable and the robust term", height))
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (1/s units)", row=1, col=1)
+    fig.update_yaxes(title_text="w (rad/s², m/s²)", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    return fig
+
+
+def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0, 40.15), title: str | None = None,
+                                 height: int = 620) -> go.Figure:
+    """Static slider over the boundary-layer width: for each ``{epsilon: result}`` of a robust run, the torques
+    of the revolute joints (top, N m; the quill's force hardly chatters) and ``||z||`` against ``epsilon``
+    (bottom, log) over ``window`` at full sampling, so that the sample-to-sample switching below ``bound`` (the
+    sampled layer's stability limit) is visible."""
+    if not runs:
+        raise ScaraError("give at least one {epsilon: result} pair")
+    eps_list = sorted(runs)
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.1)
+    joints = (0, 1, 3)
+    per = len(joints) + 2
+    for n, eps in enumerate(eps_list):
+        r = runs[eps]
+        sel = (r.t >= window[0]) & (r.t <= window[1])
+        t = r.t[sel]
+        for j in joints:
+            fig.add_trace(_line(t, r.tau[sel, j], f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.2, visible=n == 0,
+                                legendgroup=f"tau{j}"), row=1, col=1)
+        col = PALETTE["robust"] if eps > bound else AXIS_COLOURS[1]
+        fig.add_trace(_line(t, np.maximum(r.z_norm[sel], _FLOOR), "‖z‖", col, width=1.4, visible=n == 0), row=2, col=1)
+        fig.add_trace(_line([t[0], t[-1]], [eps, eps], "ε", PALETTE["reference"], dash="dash", width=1.2,
+                            visible=n == 0), row=2, col=1)
+    steps = []
+    for n, eps in enumerate(eps_list):
+        vis = [False] * (per * len(eps_list))
+        vis[per * n:per * n + per] = [True] * per
+        tag = "chatters" if eps <= bound else "smooth"
+        steps.append(dict(label=f"{eps:.3g}", method="update",
+                          args=[{"visible": vis}, {"title.text": (title or "Boundary layer") +
+                                                   f": ε = {eps:.3g} ({tag}; limit {bound:.3g})"}]))
+    first = eps_list[0]
+    lay = _layout((title or "Boundary layer") + f": ε = {first:.3g} ({'chatters' if first <= bound else 'smooth'}; "
+                  f"limit {bound:.3g})", height)
+    lay["sliders"] = [slider(steps, "ε = ")]
+    lay["margin"] = dict(lay["margin"], b=110)
+    fig.update_layout(**lay)
+    fig.update_yaxes(title_text="τ (N m)", row=1, col=1)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    return fig
+
+
+def steady_state_figure(with_integral, without_integral, predicted: float, integral_target: float,
+                        points: int = 1000, title: str | None = None, height: int = 560) -> go.Figure:
+    """Vertical error ``e_z`` (mm) of the operational controller without and with integral action, against the
+    predicted ``m_L g0 / (B33_hat K_P,z)`` (top); the integral action ``K_I s_z`` (m/s^2) approaching the
+    acceleration ``m_L g0 / B33_hat`` it must supply (bottom)."""
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    for r in (without_integral, with_integral):
+        idx = thin(len(r.t), points)
+        fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], _label(r), _colour(r), width=1.8), row=1, col=1)
+    t_end = with_integral.t[-1]
+    fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "m_L g0 / (B̂33 K_P,z)", PALETTE["reference"],
+                        dash="dash", width=1.2), row=1, col=1)
+    idx = thin(len(with_integral.t), points)
+    fig.add_trace(_line(with_integral.t[idx], with_integral.integral_action_z[idx], "integral action K_I s_z",
+                        PALETTE["operational"], width=1.5, dash="dot"), row=2, col=1)
+    fig.add_trace(_line([0, t_end], [integral_target] * 2, "m_L g0 / B̂33", PALETTE["reference"], dash="dash",
+                        width=1.2, showlegend=False), row=2, col=1)
+    fig.update_layout(**_layout(title or "The payload's steady-state error and the integral action", height,
+                                legend_rows=2))
+    fig.update_yaxes(title_text="e_z (mm)", row=1, col=1)
+    fig.update_yaxes(title_text="K_I s_z (m/s²)", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    return fig
+
+
+def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int = 440,
+                         ylabel: str = "max ‖p_d − p_e‖ after 1 s (m)") -> go.Figure:
+    """An error measure (log scale) against the payload mass (kg) for each controller: ``errors`` maps a
+    controller name (a key of ``PALETTE``) to one value per mass."""
+    masses = np.asarray(masses, dtype=float)
+    fig = go.Figure()
+    for n, (name, vals) in enumerate(errors.items()):
+        vals = np.asarray(vals, dtype=float)
+        if vals.shape != masses.shape:
+            raise ScaraError(f"errors[{name!r}] has {vals.size} values for {masses.size} masses")
+        fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, _FLOOR), mode="lines+markers",
+                                 name=CONTROLLER_LABELS.get(name, name),
+                                 marker=dict(size=8, symbol=("circle", "square", "diamond", "triangle-up")[n % 4]),
+                                 line=dict(color=PALETTE.get(name, PALETTE["reference"]), width=2)))
+    fig.update_layout(**_layout(title or "Tracking error against the payload mass", height, legend_rows=2))
+    fig.update_yaxes(type="log", exponentformat="power", title_text=ylabel)
+    fig.update_xaxes(title_text="payload m_L (kg)")
+    return fig
+
+
+def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, height: int = 640) -> go.Figure:
+    """The live panel's figure for one run: the position error norm (log), the quill's force and the other
+    torques, and the run's own signal (payload estimate, ``||z||`` or the integral action)."""
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
+                        specs=[[{}], [{"secondary_y": True}], [{}]])
+    tt, yy = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
+    fig.add_trace(_line(tt, yy, _label(result), _colour(result), width=1.8), row=1, col=1)
+    idx = thin(len(result.t), points)
+    fig.add_trace(_line(result.t[idx], result.tau[idx, 2], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
+    for j in (0, 1, 3):
+        fig.add_trace(_line(result.t[idx], result.tau[idx, j], f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1),
+                      row=2, col=1, secondary_y=True)
+    sig = result.signals
+    if "payload_estimate" in sig:
+        fig.add_trace(_line(result.t[idx], sig["payload_estimate"][idx], "m̂_L (kg)", PALETTE["adaptive"]), row=3, col=1)
+        lab = "m̂_L (kg)"
+    elif "z_norm" in sig:
+        t3, z3 = envelope(result.t, sig["z_norm"], points)
+        fig.add_trace(_line(t3, z3, "‖z‖", PALETTE["robust"]), row=3, col=1)
+        fig.update_yaxes(type="log", exponentformat="power", row=3, col=1)
+        lab = "‖z‖"
+    else:
+        fig.add_trace(_line(result.t[idx], 1e3 * result.e[idx, 2], "e_z (mm)", AXIS_COLOURS[2]), row=3, col=1)
+        lab = "e_z (mm)"
+    s = summary
+    head = (f"{_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
+            f"{1e3 * s['final_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
+    fig.update_layout(**_layout(head + (f"<br>{extra}" if extra else ""), height, legend_rows=2))
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
+    fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)
+    fig.update_yaxes(title_text="τ (N m)", row=2, col=1, secondary_y=True)
+    fig.update_yaxes(title_text=lab, row=3, col=1)
+    fig.update_xaxes(title_text="t (s)", row=3, col=1)
+    return fig
