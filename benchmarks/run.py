@@ -22,9 +22,9 @@ Method
     and Jacobian and ``numpy.linalg.solve``.
   - Closed loop: PD plus gravity compensation at 1 ms (zero-order hold) on the plant integrated by one RK4
     step per sample. Ours is ``scara.simulate(PDGravityController(), ...)`` (the whole call); each library
-    runs the same loop in Python with its own gravity (controller) and forward dynamics (plant). The
-    library loops reuse the first RK4 stage as the recorded acceleration (4 forward-dynamics calls per
-    step against our 5): a small advantage given to them.
+    runs the same loop in Python with its own gravity (controller) and forward dynamics (plant). Every
+    loop, ours included, reuses the first RK4 stage as the recorded acceleration (4 forward-dynamics
+    evaluations per step).
   - So that the loops must produce the same motion, the closed-loop plant has its rotor inertias set to
     zero here (the libraries would otherwise miss the rotor coupling, see ``agreement.py``); parameter
     values do not change the cost of a step. Each run's largest joint difference from ours is reported.

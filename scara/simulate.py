@@ -47,6 +47,7 @@ every new process). Without numba (``SCARA_NO_NUMBA=1``) the same loop and laws 
 """
 from __future__ import annotations
 
+import math
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -56,8 +57,8 @@ import numpy as np
 from . import _compile
 from ._compile import kernel
 from .dynamics import (
-    dynamic_array, forward_dynamics_kernel, forward_dynamics_scalar, gravity_kernel, kinetic_energy,
-    potential_energy,
+    DP_A1, DP_A2, DP_FM, DP_G0, DP_IL1, DP_IL2, DP_IL4, DP_IM, DP_KR, DP_L1, DP_L2, DP_ML, DP_ML1, DP_ML2, DP_ML3,
+    dynamic_array, gravity_kernel, kinetic_energy, potential_energy,
 )
 from .errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
 from .kinematics import (
@@ -112,40 +113,122 @@ OK, LAW_FAILED, DIVERGED, SINGULAR_INERTIA = 0, 1, 2, 3
 
 
 @kernel
-def rk4_step_kernel(q, qd, tau, dp, h, qdd0):
-    """One classical RK4 step of ``h`` seconds of the plant with ``tau`` held, updating ``q``, ``qd`` in place.
+def _plant_constants(dp):
+    """The constant part of the plant's ``B`` and right-hand side, from the flat array ``dp`` (once per run).
+
+    SPEC section 3: only ``B11 = beta11 + 2 b cos theta2`` and ``B12 = beta12 + b cos theta2`` depend on the
+    state (``b = a1 (m_l2 l2 + m3 a2)``); the rest of ``B`` is constant, with ``B23 = B13``, ``B24 = B14``,
+    ``B34 = 0``, so the lower-right block ``D = diag(B33, B44)`` is diagonal. Eliminating ``qdd3``, ``qdd4``
+    leaves the Schur complement ``S = B_12block - c [[1, 1], [1, 1]]``, ``c = B13^2 / B33 + B14^2 / B44``,
+    whose constant parts are returned here (see :func:`_plant_acceleration`).
+
+    Returns ``(S11_0, S12_0, S22, b, B13, B14, u3, u4, 1/B33, 1/B44, F1, F2, F3, F4, m3 g0, ok)`` with
+    ``u3 = B13 / B33``, ``u4 = B14 / B44``, ``F_i = k_ri^2 F_mi``; ``ok`` is 1.0 when ``B33 > 0`` and
+    ``B44 > 0`` (otherwise ``B`` is singular for every ``q`` and the other entries are not used).
+    """
+    a1 = dp[DP_A1]
+    a2 = dp[DP_A2]
+    l1 = dp[DP_L1]
+    l2 = dp[DP_L2]
+    m3 = dp[DP_ML3] + dp[DP_ML]
+    ml2 = dp[DP_ML2]
+    kr1 = dp[DP_KR]
+    kr2 = dp[DP_KR + 1]
+    kr3 = dp[DP_KR + 2]
+    kr4 = dp[DP_KR + 3]
+    im1 = dp[DP_IM]
+    im2 = dp[DP_IM + 1]
+    im3 = dp[DP_IM + 2]
+    im4 = dp[DP_IM + 3]
+    il4 = dp[DP_IL4]
+    j2 = dp[DP_IL2] + ml2 * l2 * l2
+    b = a1 * (ml2 * l2 + m3 * a2)
+    B11c = (dp[DP_IL1] + dp[DP_ML1] * l1 * l1 + kr1 * kr1 * im1 + j2 + ml2 * a1 * a1 + il4 + im2 + im3 + im4
+            + m3 * (a1 * a1 + a2 * a2))
+    B12c = j2 + il4 + kr2 * im2 + im3 + im4 + m3 * a2 * a2
+    B22 = j2 + il4 + kr2 * kr2 * im2 + im3 + im4 + m3 * a2 * a2
+    B13 = kr3 * im3
+    B33 = m3 + kr3 * kr3 * im3
+    B14 = il4 + kr4 * im4
+    B44 = il4 + kr4 * kr4 * im4
+    F1 = kr1 * kr1 * dp[DP_FM]
+    F2 = kr2 * kr2 * dp[DP_FM + 1]
+    F3 = kr3 * kr3 * dp[DP_FM + 2]
+    F4 = kr4 * kr4 * dp[DP_FM + 3]
+    if not (B33 > 0.0 and B44 > 0.0):
+        return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    u3 = B13 / B33
+    u4 = B14 / B44
+    c = B13 * u3 + B14 * u4
+    return (B11c - c, B12c - c, B22 - c, b, B13, B14, u3, u4, 1.0 / B33, 1.0 / B44, F1, F2, F3, F4,
+            m3 * dp[DP_G0], 1.0)
+
+
+@kernel
+def _plant_acceleration(c2, s2, v1, v2, v3, v4, t1, t2, t3, t4, pc):
+    """``qdd = B^-1 (tau - C qd - F qd - g)`` (SPEC section 3) in scalars: ``(qdd1, qdd2, qdd3, qdd4, code)``.
+
+    ``c2, s2`` are ``cos theta2, sin theta2`` (the only configuration ``B`` and ``C`` depend on), ``pc`` the
+    tuple of :func:`_plant_constants`. With ``r = tau - C qd - F qd - g``, the last two rows give
+    ``qdd3 = (r3 - B13 s) / B33``, ``qdd4 = (r4 - B14 s) / B44`` with ``s = qdd1 + qdd2``; substituting them in the
+    first two rows leaves the 2x2 system ``S [qdd1, qdd2] = [r1, r2] - (B13 r3 / B33 + B14 r4 / B44)``, solved by
+    Cramer's rule. ``B`` is positive definite iff ``B33, B44 > 0`` and ``S`` is (``S11 > 0``, ``det S > 0``);
+    ``code`` is 0, or 1 (and zeros) when it is not. Equal to :func:`~scara.dynamics.forward_dynamics_kernel`
+    (Cholesky) up to round-off, at a fraction of the cost.
+    """
+    s11c, s12c, s22, b, B13, B14, u3, u4, i33, i44, F1, F2, F3, F4, m3g, ok = pc
+    S11 = s11c + 2.0 * b * c2
+    S12 = s12c + b * c2
+    det = S11 * s22 - S12 * S12
+    if not (ok > 0.0 and S11 > 0.0 and det > 0.0):
+        return 0.0, 0.0, 0.0, 0.0, 1
+    h = b * s2
+    y3 = (t3 - F3 * v3 + m3g) * i33
+    y4 = (t4 - F4 * v4) * i44
+    w = B13 * y3 + B14 * y4
+    r1 = t1 + h * (v2 * v1 + (v1 + v2) * v2) - F1 * v1 - w
+    r2 = t2 - h * v1 * v1 - F2 * v2 - w
+    idet = 1.0 / det
+    x1 = (s22 * r1 - S12 * r2) * idet
+    x2 = (S11 * r2 - S12 * r1) * idet
+    s = x1 + x2
+    return x1, x2, y3 - u3 * s, y4 - u4 * s, 0
+
+
+@kernel
+def _rk4_step(q, qd, t1, t2, t3, t4, pc, h, qdd0):
+    """One classical RK4 step of ``h`` seconds with the torque ``(t1, t2, t3, t4)`` held; ``q``, ``qd`` (4,)
+    are updated in place and ``qdd0`` (4,) receives the first stage's acceleration (``qdd`` at the start).
 
     The state is ``(q, qd)`` and its derivative ``(qd, qdd)``; only ``theta2`` enters ``B`` and ``C``, so the
-    stages carry ``theta2`` and the velocities in scalars (:func:`~scara.dynamics.forward_dynamics_scalar`).
-    ``qdd0`` (4,) receives the first stage's acceleration, i.e. ``qdd`` at the start of the step.
-    Returns 0, or 3 if ``B`` lost definiteness.
+    four stages carry ``theta2`` and the velocities in scalars and call :func:`_plant_acceleration` with the
+    run's constants ``pc`` (:func:`_plant_constants`). Returns 0, or 3 if ``B`` lost definiteness.
     """
-    t1 = tau[0]
-    t2 = tau[1]
-    t3 = tau[2]
-    t4 = tau[3]
     th = q[1]
     v1 = qd[0]
     v2 = qd[1]
     v3 = qd[2]
     v4 = qd[3]
-    a1, a2, a3, a4, c1 = forward_dynamics_scalar(th, v1, v2, v3, v4, t1, t2, t3, t4, dp)
+    a1, a2, a3, a4, c1 = _plant_acceleration(math.cos(th), math.sin(th), v1, v2, v3, v4, t1, t2, t3, t4, pc)
     hh = 0.5 * h
     u1 = v1 + hh * a1
     u2 = v2 + hh * a2
     u3 = v3 + hh * a3
     u4 = v4 + hh * a4
-    b1, b2, b3, b4, c2 = forward_dynamics_scalar(th + hh * v2, u1, u2, u3, u4, t1, t2, t3, t4, dp)
+    th2 = th + hh * v2
+    b1, b2, b3, b4, c2 = _plant_acceleration(math.cos(th2), math.sin(th2), u1, u2, u3, u4, t1, t2, t3, t4, pc)
     w1 = v1 + hh * b1
     w2 = v2 + hh * b2
     w3 = v3 + hh * b3
     w4 = v4 + hh * b4
-    e1, e2, e3, e4, c3 = forward_dynamics_scalar(th + hh * u2, w1, w2, w3, w4, t1, t2, t3, t4, dp)
+    th3 = th + hh * u2
+    e1, e2, e3, e4, c3 = _plant_acceleration(math.cos(th3), math.sin(th3), w1, w2, w3, w4, t1, t2, t3, t4, pc)
     z1 = v1 + h * e1
     z2 = v2 + h * e2
     z3 = v3 + h * e3
     z4 = v4 + h * e4
-    f1, f2, f3, f4, c4 = forward_dynamics_scalar(th + h * w2, z1, z2, z3, z4, t1, t2, t3, t4, dp)
+    th4 = th + h * w2
+    f1, f2, f3, f4, c4 = _plant_acceleration(math.cos(th4), math.sin(th4), z1, z2, z3, z4, t1, t2, t3, t4, pc)
     qdd0[0] = a1
     qdd0[1] = a2
     qdd0[2] = a3
@@ -162,6 +245,16 @@ def rk4_step_kernel(q, qd, tau, dp, h, qdd0):
     return 3 if (c1 + c2 + c3 + c4) != 0 else 0
 
 
+@kernel
+def rk4_step_kernel(q, qd, tau, dp, h, qdd0):
+    """One classical RK4 step of ``h`` seconds of the plant ``dp`` (:func:`~scara.dynamics.dynamic_array`)
+    with ``tau`` (4,) held, updating ``q``, ``qd`` in place; ``qdd0`` (4,) receives ``qdd`` at the start of the
+    step. Returns 0, or 3 if ``B`` lost definiteness. (The engine's loop calls :func:`_rk4_step` with the
+    plant's constants computed once per run.)
+    """
+    return _rk4_step(q, qd, tau[0], tau[1], tau[2], tau[3], _plant_constants(dp), h, qdd0)
+
+
 @_loop_kernel
 def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, state, work,
                        q_out, qd_out, qdd_out, tau_out, sig_out, limit, info):
@@ -170,12 +263,23 @@ def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, 
     Writes ``q, qd, qdd, tau`` (N, 4) and the signals (N, n_sig). ``info`` (3,) int64 receives
     ``[code, k, law_code]``: code 0 when all samples ran, otherwise :data:`LAW_FAILED`, :data:`DIVERGED`
     (a state not finite or above ``limit``) or :data:`SINGULAR_INERTIA`, at sample ``k``.
+
+    The law is called with small buffers owned by the loop (the measured state, the reference row, zeroed
+    ``signals`` and ``tau``), copied to and from the output rows: no array view is created per sample.
     """
     n = ref.shape[0]
+    n_ref = ref.shape[1]
+    n_sig = sig_out.shape[1]
+    pc = _plant_constants(plant_dp)
     q = np.empty(4)
     qd = np.empty(4)
+    qdd = np.empty(4)
     spare = np.empty(4)
-    fd_work = np.empty((5, 4))
+    q_law = np.empty(4)
+    qd_law = np.empty(4)
+    r = np.empty(n_ref)
+    tau = np.empty(4)
+    sig = np.empty(n_sig)
     for i in range(4):
         q[i] = q0[i]
         qd[i] = qd0[i]
@@ -187,8 +291,18 @@ def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, 
         for i in range(4):
             q_out[k, i] = q[i]
             qd_out[k, i] = qd[i]
-        t = k * dt
-        code = law(k, t, dt, q_out[k], qd_out[k], ref[k], gains, model, state, work, sig_out[k], tau_out[k])
+            q_law[i] = q[i]
+            qd_law[i] = qd[i]
+            tau[i] = 0.0
+        for i in range(n_ref):
+            r[i] = ref[k, i]
+        for i in range(n_sig):
+            sig[i] = 0.0
+        code = law(k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
+        for i in range(4):
+            tau_out[k, i] = tau[i]
+        for i in range(n_sig):
+            sig_out[k, i] = sig[i]
         if code != 0:
             info[0] = 1
             info[1] = k
@@ -196,22 +310,31 @@ def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, 
             return
         ok = True
         for i in range(4):
-            if not abs(tau_out[k, i]) < limit:
+            if not abs(tau[i]) < limit:
                 ok = False
         if not ok:
             info[0] = 2
             info[1] = k
             return
         if k == n - 1:
-            if forward_dynamics_kernel(q, qd, tau_out[k], plant_dp, fd_work, qdd_out[k]) != 0:
+            a1, a2, a3, a4, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), qd[0], qd[1], qd[2], qd[3],
+                                                    tau[0], tau[1], tau[2], tau[3], pc)
+            if c != 0:
                 info[0] = 3
                 info[1] = k
+            else:
+                qdd_out[k, 0] = a1
+                qdd_out[k, 1] = a2
+                qdd_out[k, 2] = a3
+                qdd_out[k, 3] = a4
             return
         for s in range(substeps):
-            if rk4_step_kernel(q, qd, tau_out[k], plant_dp, h, qdd_out[k] if s == 0 else spare) != 0:
+            if _rk4_step(q, qd, tau[0], tau[1], tau[2], tau[3], pc, h, qdd if s == 0 else spare) != 0:
                 info[0] = 3
                 info[1] = k
                 return
+        for i in range(4):
+            qdd_out[k, i] = qdd[i]
         for i in range(4):
             if not (abs(q[i]) < limit and abs(qd[i]) < limit):
                 ok = False
@@ -437,9 +560,23 @@ def _operational_kernel(ref, a1, a2, d0, out):
 
 
 @kernel
-def _pose_batch(q, a1, a2, d0, out):
+def _pose_error(q, x_d, a1, a2, d0, x, e):
+    """``x[k] = k(q[k])`` (SPEC section 2) and ``e[k] = x_d[k] - x[k]`` for every sample, in one pass."""
     for k in range(q.shape[0]):
-        pose_kernel(q[k], a1, a2, d0, out[k])
+        q1 = q[k, 0]
+        t12 = q1 + q[k, 1]
+        x0 = a1 * math.cos(q1) + a2 * math.cos(t12)
+        x1 = -(a1 * math.sin(q1) + a2 * math.sin(t12))
+        x2 = d0 - q[k, 2]
+        x3 = t12 + q[k, 3]
+        x[k, 0] = x0
+        x[k, 1] = x1
+        x[k, 2] = x2
+        x[k, 3] = x3
+        e[k, 0] = x_d[k, 0] - x0
+        e[k, 1] = x_d[k, 1] - x1
+        e[k, 2] = x_d[k, 2] - x2
+        e[k, 3] = x_d[k, 3] - x3
 
 
 def _operational_from_joint(ref, p):
@@ -631,10 +768,10 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
     names = tuple(controller.signal_names)
     work = np.zeros((max(int(controller.work_rows), 0), 4))
-    q_out = np.empty((n, 4))
-    qd_out = np.empty((n, 4))
-    qdd_out = np.empty((n, 4))
-    tau_out = np.zeros((n, 4))
+    # one allocation for the six (N, 4) series (each a C-contiguous slice): a block this large is backed by
+    # huge pages where the system allows it, which saves thousands of page faults per run
+    block = np.empty((6, n, 4))
+    q_out, qd_out, qdd_out, tau_out, x, e = block
     sig_out = np.zeros((n, len(names)))
     info = np.zeros(3, dtype=np.int64)
     t0 = time.perf_counter()
@@ -649,14 +786,13 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
         raise UnstableError(f"the closed loop of {getattr(controller, 'name', controller)} diverged at "
                             f"t = {k * dt:.4f} s (sample {k}): {cause}")
     t = np.arange(n) * dt
-    x = np.empty((n, 4))
-    _pose_batch(q_out, plant.a1, plant.a2, plant.d0, x)
+    _pose_error(q_out, q_out if x_d is None else np.ascontiguousarray(x_d), plant.a1, plant.a2, plant.d0, x, e)
     if x_d is None:
         x_d = x.copy()
-    e = x_d - x
+        e[:] = 0.0
     return SimulationResult(t=t, q=q_out, qd=qd_out, qdd=qdd_out, tau=tau_out, x=x, x_d=x_d, e=e,
                             reference=ref, reference_kind=kind, q_d=None if jref is None else jref[:, :4],
-                            signals={nm: sig_out[:, i].copy() for i, nm in enumerate(names)},
+                            signals={nm: np.ascontiguousarray(sig_out[:, i]) for i, nm in enumerate(names)},
                             controller=getattr(controller, "name", type(controller).__name__), plant=plant,
                             dt=dt, substeps=substeps, elapsed=elapsed,
                             extra={"final_state": state})
