@@ -409,7 +409,7 @@ def forward_dynamics_kernel(q, qd, tau, dp, work, out):
 
     ``B`` and the right-hand side are formed in closed form (as :func:`inertia_kernel`,
     :func:`coriolis_vector_kernel`) in local scalars and solved by an unrolled 4x4 Cholesky factorisation
-    (:func:`forward_dynamics_scalar`), which keeps the simulation's inner loop free of array traffic.
+    (:func:`forward_dynamics_scalar`). The simulation engine uses a cheaper reduced solve of its own (``scara.simulate._plant_acceleration``), tested against this one.
     ``work`` (shape (5, 4), :func:`dynamics_workspace`) is accepted for a uniform kernel signature and is
     not touched. Returns 0, or 1 if ``B`` is not positive definite (``out`` then unchanged).
     """

@@ -780,7 +780,10 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     elapsed = time.perf_counter() - t0
     if info[0] != OK:
         k = int(info[1])
-        cause = {LAW_FAILED: f"the controller's law returned code {int(info[2])}",
+        code = int(info[2])
+        explain = getattr(controller, "explain", None)  # a controller may name the cause behind its codes
+        law_cause = f"the controller's law returned code {code}" + (f": {explain(code)}" if explain else "")
+        cause = {LAW_FAILED: law_cause,
                  DIVERGED: f"a joint state or torque exceeded {limit:g} or is not finite",
                  SINGULAR_INERTIA: "the plant's inertia matrix lost positive definiteness"}[int(info[0])]
         raise UnstableError(f"the closed loop of {getattr(controller, 'name', controller)} diverged at "

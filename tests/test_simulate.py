@@ -384,3 +384,34 @@ def test_chapter_figures_and_panel(scenario):
     assert "4.905 mm" in out[1]  # the sag m_L g0 / K_P3 listed in the panel
     with pytest.raises(ScaraError):  # the panel shows this message in place of the plot
         panel.render(payload=-1.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4)
+
+
+# --- the plant's reduced solve (joints 3 and 4 eliminated) against the general forward dynamics ---------
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=300)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_plant_acceleration_equals_forward_dynamics_for_random_robots(seed):
+    """The engine's closed-form elimination of the constant, diagonal quill/wrist block of B gives the same
+    acceleration as the general 4x4 solve of scara.forward_dynamics, for random robots and states."""
+    import math
+
+    from scara import ScaraParams, forward_dynamics
+    from scara.dynamics import dynamic_array
+    from scara.simulate import _plant_acceleration, _plant_constants
+
+    rng = np.random.default_rng(seed)
+    u = lambda lo, hi, n=None: rng.uniform(lo, hi, n)  # noqa: E731
+    p = ScaraParams(a1=u(0.2, 1.0), a2=u(0.2, 1.0), l1=u(0.05, 0.5), l2=u(0.05, 0.5), m_l1=u(1, 40),
+                    m_l2=u(1, 40), m_l3=u(1, 20), I_l1=u(0.1, 8), I_l2=u(0.1, 8), I_l4=u(0.1, 2),
+                    k_r=tuple(u(1, 60, 4)), I_m=tuple(u(1e-4, 0.02, 4)), F_m=tuple(u(0, 0.02, 4)), m_L=u(0, 10))
+    q = np.r_[u(-math.pi, math.pi, 2), u(0, 1), u(-math.pi, math.pi)]
+    qd = u(-3, 3, 4)
+    tau = u(-50, 50, 4)
+    pc = _plant_constants(dynamic_array(p))
+    *qdd, code = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), *qd, *tau, pc)
+    assert code == 0
+    ref = forward_dynamics(q, qd, tau, p)
+    assert np.allclose(qdd, ref, rtol=1e-10, atol=1e-10 * np.abs(ref).max())

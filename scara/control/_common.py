@@ -89,32 +89,26 @@ class BoundedController(Controller):
         return np.concatenate([self.tau_max, [self.max_error]])
 
     def explain(self, code: int) -> str:
-        """The cause behind a law's return code (see :data:`FAILURE_CAUSES`)."""
-        return self.failure_causes.get(int(code), f"the law returned the unknown code {int(code)}")
+        """The cause behind a law's return code (see :data:`FAILURE_CAUSES`), with the bound it broke.
+
+        :func:`scara.simulate` calls it when a law stops a run, so the :class:`~scara.UnstableError` names the
+        time, the cause and the limit.
+        """
+        code = int(code)
+        cause = self.failure_causes.get(code, f"the law returned the unknown code {code}")
+        if code == TORQUE_BOUND:
+            cause += f" (tau_max = {self.tau_max.tolist()})"
+        elif code == ERROR_BOUND:
+            cause += f" (max_error = {self.max_error:g})"
+        return cause
 
     def run(self, traj=None, plant: ScaraParams | None = None, **kwargs):
-        """``scara.simulate(self, traj, plant, **kwargs)``, with a failure of the law explained.
-
-        The engine stops a run at the first sample where the law returns a non-zero code and reports the
-        time and the code; this re-raises its :class:`~scara.UnstableError` with the cause spelled out
-        (torque bound, error bound, singular Jacobian). Returns the :class:`~scara.simulate.SimulationResult`.
-        """
+        """``scara.simulate(self, traj, plant, **kwargs)``: the run, returning a
+        :class:`~scara.simulate.SimulationResult`; a failure of the law raises :class:`~scara.UnstableError`
+        with the time, the cause and the bound (see :meth:`explain`)."""
         from ..simulate import simulate  # noqa: PLC0415
 
-        try:
-            return simulate(self, traj, plant, **kwargs)
-        except UnstableError as exc:
-            msg = str(exc)
-            marker = "returned code "
-            if marker in msg:
-                code = int(msg.split(marker, 1)[1].split()[0].rstrip(".,;:)"))
-                bound = ""
-                if code == TORQUE_BOUND:
-                    bound = f" (tau_max = {self.tau_max.tolist()})"
-                elif code == ERROR_BOUND:
-                    bound = f" (max_error = {self.max_error:g})"
-                raise UnstableError(f"{msg}: {self.explain(code)}{bound}") from None
-            raise
+        return simulate(self, traj, plant, **kwargs)
 
 
 # --------------------------------------------------------------------------------------------------
