@@ -1,5 +1,7 @@
-"""Figure builders and live panels of chapters 1 and 2: the figures hold the expected traces and slider steps,
-the drawn geometry agrees with independent formulas, and the panels show a message for bad input."""
+"""Figure builders of chapters 1, 2 and 3 and the live panels of chapters 1 and 2: the figures hold the expected
+traces and slider steps, the drawn geometry agrees with independent formulas, every figure follows the book's
+reading rules (short titles, axis titles with units, a legend, a height for laptop and phone, greyscale-safe
+styles), and the panels show a message for bad input."""
 from __future__ import annotations
 
 import contextlib
@@ -14,7 +16,7 @@ from scara import NonFiniteError, ScaraError, ScaraParams, UnreachableError, fki
 from scara.plots import (arm_figure, determinant_figure, duality_figure, ellipse_slider_figure,
                          inverse_kinematics_figure, joint_slider_figure, manipulability_map_figure,
                          reference_ellipses_figure, workspace_ellipses_figure)
-from scara.plots.kinematics import arm_geometry
+from scara.plots.kinematics import PHONE_PLOT_WIDTH, arm_geometry, legend_entries, legend_rows
 from scara.plots.manipulability import REFERENCE_CONFIGURATIONS, ellipse_xy, workspace_points
 from scara.manipulability import force_ellipsoid, velocity_ellipsoid
 
@@ -155,24 +157,36 @@ def test_ellipse_xy_at_a_singularity_is_a_segment_and_a_strip():
         ellipse_xy(velocity_ellipsoid(q, rows=(0, 1)), 0.0)
 
 
-def test_reference_ellipses_figure_titles_carry_the_spec_table():
+def test_reference_ellipses_figure_steps_carry_the_spec_table():
     fig = reference_ellipses_figure()
-    titles = [a.text for a in fig.layout.annotations]
-    for name, w in zip(["q1", "q2", "q3", "q4", "q5"], ["0.250", "0.177", "0.026", "0.016", "0.000"]):
-        assert any(t.startswith(name) and f"w = {w}" in t for t in titles), (name, titles)
+    (sl,) = fig.layout.sliders
+    assert [s.label for s in sl.steps] == ["q1", "q2", "q3", "q4", "q5"]
+    for s, w in zip(sl.steps, ["0.250", "0.177", "0.026", "0.016", "0.000"]):
+        data, layout, idx = s.args
+        assert layout["title.text"].startswith(s.label) and f"w = {w}" in layout["title.text"]
+        # the step redraws the arm, both ellipses and their axes at that configuration
+        q = np.array(REFERENCE_CONFIGURATIONS[s.label])
+        assert list(idx) == [0, 1, 2, 3, 4]
+        assert np.allclose([data["x"][0][-1], data["y"][0][-1]], _closed_form_position(q)[:2], atol=1e-4)
     names = [t.name for t in fig.data]
-    assert names.count("arm") == 5 and names.count("velocity ellipse (× 0.15)") == 5
-    assert names.count("force ellipse (× 0.15)") == 5
-    assert sum(bool(t.showlegend) for t in fig.data) == 3  # one legend entry per kind
+    assert names == ["arm", "velocity ellipse", "velocity principal axes", "force ellipse", "force principal axes",
+                     "workspace boundary"]
+    assert legend_entries(fig) == ["arm", "velocity ellipse", "force ellipse"]
+    with pytest.raises(ScaraError, match="between 2 and 25"):
+        reference_ellipses_figure({"only": Q})
 
 
 def test_workspace_ellipses_figure_has_an_ellipse_per_position():
     pts = workspace_points()
     assert len(pts) >= 20
     fig = workspace_ellipses_figure(pts)
-    for key in ("velocity ellipses", "force ellipses"):
-        (tr,) = [t for t in fig.data if t.name == key]
-        strokes = _strokes(*_xy(tr))
+    (sl,) = fig.layout.sliders
+    assert [s.label for s in sl.steps] == ["velocity", "force"]
+    assert fig.data[1].name == "velocity ellipses" and tuple(fig.data[1].x) == tuple(sl.steps[0].args[0]["x"][0])
+    for step, key, dash in zip(sl.steps, ("velocity", "force"), ("solid", "dash")):
+        data, layout, idx = step.args
+        assert list(idx) == [1] and data["name"] == [f"{key} ellipses"] and data["line.dash"] == [dash]
+        strokes = _strokes(*_xy(go.Scatter(x=data["x"][0], y=data["y"][0])))
         assert len(strokes) == len(pts)
         centres = np.array([s[:-1].mean(axis=0) for s in strokes])  # closed outline: drop the repeated point
         assert np.allclose(centres, pts[:, :2], atol=1e-3)
@@ -203,10 +217,18 @@ def test_duality_figure_lengths_are_reciprocal():
     fig = duality_figure([0.0, math.radians(60), 0.5, 0.0])
     by_name = {t.name: np.array([np.nan if v is None else v for v in t.y], float) for t in fig.data
                if t.name and ("σ" in t.name)}
-    s1, s2 = by_name["σ1 (velocity, major)"], by_name["σ2 (velocity, minor)"]
-    f1, f2 = by_name["1/σ1 (force, minor)"], by_name["1/σ2 (force, major)"]
+    s1, s2 = by_name["σ1 (velocity)"], by_name["σ2 (velocity)"]
+    f1, f2 = by_name["1/σ1 (force)"], by_name["1/σ2 (force)"]
     ok = np.isfinite(f2) & (s2 > 1e-3)
     assert np.allclose((s1 * f1), 1.0, rtol=1e-4) and np.allclose((s2 * f2)[ok], 1.0, rtol=1e-3)
+    # the semi-axes are those of the Jacobian's horizontal block (an independent SVD); the drawn values are
+    # rounded to 5 decimals, the theta2 grid is the figure's own (its x labels are rounded to 0.01 degree)
+    t2 = np.radians(np.linspace(-179.0, 179.0, len(fig.data[0].x)))
+    for k in (0, 40, 90, 150):
+        sv = np.linalg.svd(jacobian([0.0, t2[k], 0.5, 0.0])[:2, :2], compute_uv=False)
+        assert np.allclose([s1[k], s2[k]], sv, atol=1e-5)
+    marks = fig.data[-1]
+    assert marks.name == "θ2 = 60°" and np.allclose(marks.x, 60.0)
 
 
 def test_ellipse_slider_figure_sweeps_theta2():
@@ -273,3 +295,241 @@ def test_manipulability_panel_reports_bad_scale():
 def test_reference_configurations_are_the_spec_ones():
     assert np.allclose(np.array(list(REFERENCE_CONFIGURATIONS.values()))[:, 1],
                        [-math.pi / 2, math.pi / 4, math.pi / 30, 0.98 * math.pi, -0.9999 * math.pi])
+
+
+# ------------------------------------------------------------------------------------------- chapter 3
+from scara import plan_path, reference_plan, reference_trajectory  # noqa: E402
+from scara.plots import (anticipation_slider_figure, corner_figure, joint_profiles_figure,  # noqa: E402
+                         path_figure, profiles_figure, timing_law_figure, top_view_figure)
+from scara.plots.trajectory import decimate  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def traj():
+    return reference_trajectory()
+
+
+@pytest.fixture(scope="module")
+def stop_at_p4():
+    plan = reference_plan()
+    plan["waypoints"][4] = plan["waypoints"][4].replace(anticipation=0.0)
+    return plan_path(**plan)
+
+
+def _trapezoid(tau, L, T, tc):
+    """eq-trapezoidal written out independently of scara.trajectory."""
+    v = L / (T - tc)
+    a = v / tc
+    return np.where(tau < tc, 0.5 * a * tau**2, np.where(tau < T - tc, v * (tau - tc / 2), L - 0.5 * a * (T - tau)**2))
+
+
+def test_timing_law_figure_is_the_trapezoid(traj):
+    law = traj.laws[1]
+    fig = timing_law_figure(law)
+    s_tr, sd_tr, sdd_tr = fig.data[:3]
+    tau = np.array(s_tr.x, float)
+    assert np.allclose(np.array(s_tr.y, float), _trapezoid(tau, law.length, law.duration, law.blend), atol=1e-6)
+    # the speed is the derivative of s: compare with central differences of the closed form
+    h = 1e-6
+    fd = (_trapezoid(tau + h, law.length, law.duration, law.blend)
+          - _trapezoid(tau - h, law.length, law.duration, law.blend)) / (2 * h)
+    inside = (np.abs(tau - law.blend) > 1e-3) & (np.abs(tau - (law.duration - law.blend)) > 1e-3) & (tau > 1e-3)
+    assert np.allclose(np.array(sd_tr.y, float)[inside], fd[inside], atol=1e-6)
+    assert set(np.round(np.array(sdd_tr.y, float), 6)) <= {0.0, round(law.acceleration, 6), round(-law.acceleration, 6)}
+    assert len(fig.layout.shapes) == 2 and "t_f = 8 s" in fig.layout.title.text
+
+
+def test_decimate_keeps_every_stop_and_corner(traj):
+    k = decimate(traj, 500)
+    marks = np.round(np.r_[traj.segment_start, traj.segment_end] / traj.dt).astype(int)
+    assert set(marks) <= set(k) and k[0] == 0 and k[-1] == traj.t.size - 1 and len(k) < 600
+    with pytest.raises(ScaraError, match="window"):
+        decimate(traj, 100, lo=80.0, hi=90.0)
+
+
+def test_path_figure_passes_through_the_stop_points(traj):
+    fig = path_figure(traj)
+    path = np.array([fig.data[0].x, fig.data[0].y, fig.data[0].z], float).T
+    for i in np.flatnonzero(~np.asarray(traj.via)):
+        assert np.min(np.linalg.norm(path - traj.waypoints[i], axis=1)) < 1e-5
+    (arc,) = [t for t in fig.data if t.name.startswith("arc")]
+    pts = np.array([arc.x, arc.y, arc.z], float).T
+    assert np.allclose(np.linalg.norm(pts - [0.23, 0.20, 0.5], axis=1), 0.05, atol=1e-4)  # SPEC section 4
+    assert {t.name for t in fig.data} >= {"path", "stop point", "via point"}
+    with pytest.raises(ScaraError, match="Trajectory"):
+        path_figure("not a trajectory")
+
+
+def test_top_view_and_profiles(traj):
+    fig = top_view_figure(traj)
+    (path,) = [t for t in fig.data if t.name == "path"]
+    assert np.allclose(path.x[0], traj.x[0, 0]) and fig.layout.yaxis.scaleanchor == "x"
+    fig = profiles_figure(traj)
+    comps = [t for t in fig.data if t.name in ("p_x", "p_y", "p_z")]
+    assert len(comps) == 9  # position, velocity, acceleration of each
+    t = np.array(comps[0].x, float)
+    k = np.round(t / traj.dt).astype(int)
+    assert np.allclose(np.array(comps[0].y, float), traj.x[k, 0], atol=1e-5)
+    # every stop shows as a zero velocity: at each segment end the velocity traces read 0
+    vel = [tr for tr in fig.data if tr.yaxis == "y2"]
+    ends = [np.flatnonzero(np.isclose(t, e))[0] for e in traj.segment_end if not traj.via[list(traj.segment_end).index(e) + 1]]
+    for tr in vel:
+        assert np.allclose(np.array(tr.y, float)[ends], 0.0, atol=1e-9)
+
+
+def test_corner_figure_cuts_the_corner_by_the_corner_distance(traj, stop_at_p4):
+    fig = corner_figure(traj, stop_at_p4, 4)
+    (via,) = [t for t in fig.data if t.name.startswith("via") and t.xaxis == "x"]
+    (stop,) = [t for t in fig.data if t.name.startswith("stop") and t.xaxis == "x"]
+    p4 = traj.waypoints[4][:2]
+    d_via = np.min(np.hypot(np.array(via.x, float) - p4[0], np.array(via.y, float) - p4[1]))
+    d_stop = np.min(np.hypot(np.array(stop.x, float) - p4[0], np.array(stop.y, float) - p4[1]))
+    d_exact = traj.corner_distances()["p4"][0]
+    # decimated to 400 points over ~10 s at <= 3 cm/s: samples ~0.75 mm apart, so the drawn minimum is within
+    # half a spacing above the true one; coordinates are rounded to 1e-5 m, which may put it 0.71e-5 m below
+    assert d_exact - 0.71e-5 <= d_via <= d_exact + 4e-4 and d_stop < 1e-5
+    assert via.line.dash == "solid" and stop.line.dash == "dash"
+
+
+def test_anticipation_slider_steps_follow_the_corner_law():
+    fig = anticipation_slider_figure(reference_plan(), 4, values=[0.0, 0.5, 1.0, 2.0, 3.0])
+    (sl,) = fig.layout.sliders
+    assert [s.label for s in sl.steps] == ["0", "0.5", "1", "2", "3"]
+    import re
+    mm = [float(re.search(r"passes ([0-9.]+) mm", s.args[1]["title.text"]).group(1)) for s in sl.steps]
+    assert mm[0] == 0.0
+
+    def corner_mm(dt):
+        """eq-traj-corner written out: segments p3->p4 and p4->p5 of 6 s each, blends t_f / 3 = 2 s."""
+        pts = [np.array(w.position, float) for w in reference_plan()["waypoints"][3:6]]
+        u1, u2 = pts[1] - pts[0], pts[2] - pts[1]
+        a1, a2 = (np.linalg.norm(u) / ((6.0 - 2.0) * 2.0) for u in (u1, u2))
+        tau = np.linspace(0.0, dt, 200001)[:, None]
+        d = -0.5 * a1 * (dt - tau) ** 2 * u1 / np.linalg.norm(u1) + 0.5 * a2 * tau**2 * u2 / np.linalg.norm(u2)
+        return 1000 * np.linalg.norm(d, axis=1).min()
+
+    # within the 2 s blends the titles state eq-traj-corner's distance, rounded to 0.1 mm
+    for a, shown in zip((0.5, 1.0, 2.0), mm[1:4]):
+        assert abs(shown - corner_mm(a)) <= 0.05 + 1e-9, (a, shown, corner_mm(a))
+    for s in sl.steps:
+        assert list(s.args[2]) == [2, 3]
+    with pytest.raises(ScaraError, match="between 2 and 25"):
+        anticipation_slider_figure(reference_plan(), 4, values=[1.0])
+
+
+def test_joint_profiles_mark_the_smallest_manipulability(traj):
+    fig = joint_profiles_figure(traj)
+    (mark,) = [t for t in fig.data if t.name == "min w"]
+    w = traj.manipulability()
+    assert math.isclose(mark.y[0], float(w.min()), abs_tol=1e-5) and math.isclose(mark.x[0], traj.t[np.argmin(w)])
+    (wtr,) = [t for t in fig.data if t.name == "w"]
+    # independent: w from the distance to the joint-1 axis along the path (eq-manip-wr)
+    k = np.round(np.array(wtr.x, float) / traj.dt).astype(int)
+    r = np.hypot(traj.x[k, 0], traj.x[k, 1])
+    c2 = (r**2 - P.a1**2 - P.a2**2) / (2 * P.a1 * P.a2)
+    assert np.allclose(np.array(wtr.y, float), P.a1 * P.a2 * np.sqrt(1 - c2**2), atol=1e-5)
+
+
+# ------------------------------------------------------------------------------------------- reading rules
+def _all_figures():
+    tr = reference_trajectory()
+    plan = reference_plan()
+    plan["waypoints"][4] = plan["waypoints"][4].replace(anticipation=0.0)
+    stop = plan_path(**plan)
+    return {
+        "arm": arm_figure(Q), "joint_slider": joint_slider_figure(), "ik": inverse_kinematics_figure([0.18, 0.2, 0.5, 0]),
+        "determinant": determinant_figure(), "reference": reference_ellipses_figure(),
+        "workspace": workspace_ellipses_figure(), "map": manipulability_map_figure(n=41),
+        "duality": duality_figure([0, math.pi / 3, 0.5, 0]), "sweep": ellipse_slider_figure(),
+        "timing": timing_law_figure(tr.laws[1]), "path": path_figure(tr), "top": top_view_figure(tr),
+        "profiles": profiles_figure(tr), "corner": corner_figure(tr, stop, 4),
+        "anticipation": anticipation_slider_figure(reference_plan(), 4), "joints": joint_profiles_figure(tr),
+    }
+
+
+@pytest.fixture(scope="module")
+def figures():
+    return _all_figures()
+
+
+def _lines(title):
+    import re
+    return [re.sub(r"<[^>]+>", "", ln) for ln in (title or "").split("<br>")]
+
+
+def test_every_figure_reads_on_a_laptop_and_a_phone(figures):
+    for name, fig in figures.items():
+        lay = fig.layout
+        assert 380 <= lay.height <= 560, (name, lay.height)
+        assert lay.width is None, name  # the width follows the page
+        titles = [lay.title.text] + [s.args[1]["title.text"] for sl in (lay.sliders or []) for s in sl.steps
+                                     if "title.text" in s.args[1]]
+        for t in titles:
+            # about 45 characters of the 15 px title font fit a 360 px phone page
+            assert all(len(ln) <= 45 for ln in _lines(t)), (name, t)
+        names = legend_entries(fig)
+        assert names, f"{name}: no legend"
+        rows = legend_rows(names)
+        assert rows <= 4, (name, rows, names)
+        # room is reserved above the plot for the title and the legend as it wraps at phone width
+        n_title = len(_lines(lay.title.text)) if lay.title.text else 0
+        assert lay.margin.t >= 14 + 22 * n_title + 21 * rows, name
+        assert lay.legend.yref == "container" and lay.title.yref in (None, "container")
+
+
+def test_every_axis_has_a_title_with_a_unit(figures):
+    import re
+    unit = re.compile(r"\(.+\)")
+    for name, fig in figures.items():
+        lay = fig.layout
+        if lay.scene.xaxis.title.text:  # 3-D
+            for ax in (lay.scene.xaxis, lay.scene.yaxis, lay.scene.zaxis):
+                assert unit.search(ax.title.text or ""), (name, ax.title.text)
+            continue
+        used_y = {t.yaxis or "y" for t in fig.data if t.type != "scatter3d"}
+        used_x = {t.xaxis or "x" for t in fig.data if t.type != "scatter3d"}
+        for key in used_y:
+            ax = lay["yaxis" + key[1:]]
+            assert unit.search(ax.title.text or ""), (name, key, ax.title.text)
+        # shared x axes carry their title on the bottom plot only: at least one titled x axis per figure,
+        # and every titled one names its unit
+        titled = [lay["xaxis" + k[1:]].title.text for k in used_x if lay["xaxis" + k[1:]].title.text]
+        assert titled and all(unit.search(t) for t in titled), (name, titled)
+
+
+def test_styles_survive_greyscale(figures):
+    def dash(t):
+        return t.line.dash or "solid"
+
+    # velocity ellipses solid, force ellipses dashed, wherever they are drawn
+    for name in ("reference", "sweep"):
+        by = {t.name: t for t in figures[name].data}
+        assert dash(by["velocity ellipse"]) == "solid" and dash(by["force ellipse"]) == "dash", name
+    assert {dash(t) for t in figures["duality"].data[:4]} == {"solid", "dash", "dot", "dashdot"}
+    # the two elbows, the x/y/z triads, the components of the profiles and the joints differ by dash too
+    elbows = [t for t in figures["ik"].data if t.name.startswith("elbow")]
+    assert dash(elbows[0]) != dash(elbows[1])
+    triads = [t for t in figures["arm"].data if t.name.endswith("axes")]
+    assert len({dash(t) for t in triads}) == 3
+    comps = [t for t in figures["profiles"].data if t.name in ("p_x", "p_y", "p_z", "φ") and t.showlegend is not False]
+    assert len({dash(t) for t in comps}) == 4
+    joints = [t for t in figures["joints"].data if t.name in ("θ1", "θ2", "d3", "θ4")]
+    assert len({dash(t) for t in joints}) == 4
+
+
+def test_legend_rows_matches_plotly_wrapping():
+    from scara.plots.kinematics import _text_width
+
+    # legend entry widths (px, 12 px font) measured in Chromium on the built book: the estimate may be long
+    # (reserving a little too much room) but never short by more than a pixel (which would let the legend
+    # overlap the plot on a phone)
+    measured = {"arm": 63.2, "θ2 = 60°": 87.9, "velocity ellipse": 120.2, "workspace boundary": 154.2,
+                "σ1 (velocity)": 107.9, "stretched: w = 0, r = 1 m": 171.9, "φ": 50.5, "end effector": 105.7}
+    for name, width in measured.items():
+        assert -1.0 <= 44 + _text_width(name) - width <= 9.0, (name, 44 + _text_width(name), width)
+    # entries fit on one row when their total width fits, else in equal columns as wide as the widest entry
+    assert legend_rows(["arm", "x axes", "y axes"]) == 1
+    assert legend_rows(["velocity ellipse (x 0.15)", "force ellipse (x 0.15)", "arm"]) == 3
+    assert legend_rows(["σ1 (velocity)", "σ2 (velocity)", "1/σ1 (force)", "1/σ2 (force)", "θ2 = 60°"]) == 3
+    assert legend_rows(["a" * 10] * 6, plot_width=700) == 1 and legend_rows([]) == 0
+    assert 220 <= PHONE_PLOT_WIDTH <= 240  # measured: 227 to 232 px on a 360 px page

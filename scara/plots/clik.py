@@ -17,11 +17,12 @@ from plotly.subplots import make_subplots
 
 from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik
 from ..errors import ScaraError, UnstableError
-from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, slider
+from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
 from .kinematics import _layout
 
 __all__ = [
     "METHOD_LABELS",
+    "METHOD_DASHES",
     "GAIN_SCALES",
     "envelope",
     "thin",
@@ -38,17 +39,30 @@ __all__ = [
     "comparison_rows",
 ]
 
+
 METHOD_LABELS = {
     "inverse": "Jacobian inverse",
     "transpose": "Jacobian transpose",
-    "pseudoinverse": "pseudo-inverse (x relaxed)",
+    "pseudoinverse": "pseudo-inverse",
     "second_order": "second order",
 }
+#: one dash style per method, so that the curves stay apart in greyscale (colours: ``PALETTE``)
+METHOD_DASHES = {"inverse": "solid", "transpose": "dash", "pseudoinverse": "dot", "second_order": "dashdot"}
 _JOINTS = ("θ1", "θ2", "d3", "θ4")
 #: default gain scales of :func:`gain_slider_figure`: the seed (1), up to and past the transpose's limit (~3.92
 #: on the reference) and close to the inverse's (2 / (dt K) = 5 for the seed's x, y, z gains)
 GAIN_SCALES = (0.25, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 3.5, 3.9, 4.5, 4.9)
 _FLOOR = 1e-12  # log axes: values below this (exact zeros) are drawn at the floor
+
+
+def _fit_layout(title: str, height: int, legend_rows: int = 1, **kw) -> dict:
+    """The book's layout for these figures: a title and a horizontal legend at the top, both placed relative to
+    the whole figure (``yref="container"``) so that plotly reserves room for the legend as it wraps on a
+    phone-width page; title and legend fonts as in the other chapters (15 px and 12 px)."""
+    lay = _layout(title, height, legend_rows=legend_rows, **kw)
+    lay["title"]["font"] = dict(size=15)
+    lay["legend"]["font"] = dict(size=12)
+    return lay
 
 
 def _f(a):
@@ -64,6 +78,10 @@ def _label(r: ClikResult) -> str:
 
 def _colour(r: ClikResult) -> str:
     return PALETTE.get(r.method, PALETTE["reference"])
+
+
+def _dash(r: ClikResult) -> str:
+    return METHOD_DASHES.get(r.method, "solid")
 
 
 def _results(results) -> list:
@@ -121,40 +139,44 @@ def _method_menu(fig: go.Figure, groups: list, titles: list) -> None:
                                         yanchor="bottom", showactive=True, active=0)])
 
 
-def clik_joints_figure(results, points: int = 800, title: str | None = None, height: int = 640) -> go.Figure:
-    """Joint positions (top) and velocities (bottom): revolute joints on the left (rad, rad/s), the prismatic
-    ``d3`` on the right (m, m/s). With several results a dropdown picks the method shown."""
+def clik_joints_figure(results, points: int = 800, title: str | None = None, height: int = 560) -> go.Figure:
+    """Joint motion in three stacked panels sharing the time axis: the revolute joints ``θ1, θ2, θ4`` (rad),
+    the quill ``d3`` (m), and the revolute joint rates (rad/s). One column, so that it reads at phone width;
+    each joint keeps its colour and dash style. With several results a dropdown picks the method shown."""
     rs = _results(results)
-    fig = make_subplots(rows=2, cols=2, shared_xaxes=True, column_widths=[0.68, 0.32], horizontal_spacing=0.1,
-                        vertical_spacing=0.08)
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05, row_heights=[0.4, 0.25, 0.35])
     groups, titles = [], []
     for r in rs:
         idx = thin(len(r.t), points)
         t = _f(r.t[idx])
         first = len(fig.data)
         for j, name in enumerate(_JOINTS):
-            col = 2 if j == 2 else 1
-            for row, data in ((1, r.q), (2, r.qd)):
-                fig.add_trace(go.Scatter(x=t, y=_f(data[idx, j]), mode="lines", name=f"{name} · {_label(r)}",
-                                         legendgroup=f"{r.method}{name}", showlegend=row == 1,
-                                         line=dict(color=JOINT_COLOURS[j], width=1.6)), row=row, col=col)
+            style = dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j])
+            if j == 2:
+                fig.add_trace(go.Scatter(x=t, y=_f(r.q[idx, j]), mode="lines", name=f"{name} · {_label(r)}",
+                                         legendgroup=f"{r.method}{name}", line=style), row=2, col=1)
+                continue
+            fig.add_trace(go.Scatter(x=t, y=_f(r.q[idx, j]), mode="lines", name=f"{name} · {_label(r)}",
+                                     legendgroup=f"{r.method}{name}", line=style), row=1, col=1)
+            fig.add_trace(go.Scatter(x=t, y=_f(r.qd[idx, j]), mode="lines", name=f"{name} rate · {_label(r)}",
+                                     legendgroup=f"{r.method}{name}", showlegend=False, line=style), row=3, col=1)
         groups.append(list(range(first, len(fig.data))))
         titles.append(f"Joint motion, {_label(r)}")
-    fig.update_layout(**_layout(title or titles[0], height))
+    fig.update_layout(**_fit_layout(title or titles[0], height))
     if len(rs) > 1:
         _method_menu(fig, groups, titles if title is None else [title] * len(rs))
     fig.update_yaxes(title_text="θ1, θ2, θ4 (rad)", row=1, col=1)
-    fig.update_yaxes(title_text="d3 (m)", row=1, col=2)
-    fig.update_yaxes(title_text="joint rates (rad/s)", row=2, col=1)
-    fig.update_yaxes(title_text="d3 rate (m/s)", row=2, col=2)
-    fig.update_xaxes(title_text="t (s)", row=2)
+    fig.update_yaxes(title_text="d3 (m)", row=2, col=1)
+    fig.update_yaxes(title_text="rates (rad/s)", row=3, col=1)
+    fig.update_xaxes(title_text="t (s)", row=3, col=1)
     return fig
 
 
-def clik_error_figure(results, points: int = 1000, title: str | None = None, height: int = 560,
+def clik_error_figure(results, points: int = 1000, title: str | None = None, height: int = 520,
                       settle: float = 0.0) -> go.Figure:
     """Norm of the position error (top, m) and orientation error ``|e_phi|`` (bottom, rad) on log axes, one
-    curve per method (upper envelope). For the pseudo-inverse only the kept components count."""
+    curve per method (upper envelope; method colour and dash). For the pseudo-inverse only the kept
+    components count."""
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in rs:
@@ -162,17 +184,19 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
         for row, series in ((1, r.position_error), (2, r.orientation_error)):
             tt, yy = envelope(r.t[keep], series[keep], points)
             fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=_label(r), legendgroup=r.method,
-                                     showlegend=row == 1, line=dict(color=_colour(r), width=1.5)), row=row, col=1)
-    fig.update_layout(**_layout(title or "Tracking error along the reference", height))
+                                     showlegend=row == 1, line=dict(color=_colour(r), width=1.8, dash=_dash(r))),
+                          row=row, col=1)
+    fig.update_layout(**_fit_layout(title or "Tracking error along the reference", height))
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
-def error_components_figure(results, points: int = 1000, title: str | None = None, height: int = 540) -> go.Figure:
-    """The four components of ``e = x_d - x_e``, signed: position (m, top) and phi (rad, bottom). With several
-    results a dropdown picks the method shown (the axes rescale to it)."""
+def error_components_figure(results, points: int = 1000, title: str | None = None, height: int = 520) -> go.Figure:
+    """The four components of ``e = x_d - x_e``, signed: position (m, top) and phi (rad, bottom), each component
+    with its colour and dash style. With several results a dropdown picks the method shown (the axes rescale
+    to it)."""
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.65, 0.35])
     groups, titles = [], []
@@ -181,11 +205,12 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
         first = len(fig.data)
         for i, name in enumerate(COMPONENTS):
             fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.e[idx, i]), mode="lines",
-                                     name=f"e_{name} · {_label(r)}", line=dict(color=AXIS_COLOURS[i], width=1.4)),
+                                     name=f"e_{name} · {_label(r)}",
+                                     line=dict(color=AXIS_COLOURS[i], width=1.6, dash=DASHES[i])),
                           row=1 if i < 3 else 2, col=1)
         groups.append(list(range(first, len(fig.data))))
         titles.append(f"Error components, {_label(r)}")
-    fig.update_layout(**_layout(title or titles[0], height))
+    fig.update_layout(**_fit_layout(title or titles[0], height))
     if len(rs) > 1:
         _method_menu(fig, groups, titles if title is None else [title] * len(rs))
     fig.update_yaxes(title_text="e_x, e_y, e_z (m)", exponentformat="power", row=1, col=1)
@@ -195,25 +220,26 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
 
 
 def manipulability_figure(results, points: int = 1000, title: str | None = None, height: int = 400) -> go.Figure:
-    """Manipulability ``w(t) = a1 a2 |sin theta2|`` along each run, with its largest possible value ``a1 a2``."""
+    """Manipulability ``w(t) = a1 a2 |sin theta2|`` along each run (method colour and dash); the axis reaches the
+    largest possible value ``a1 a2``."""
     rs = _results(results)
     fig = go.Figure()
     for r in rs:
         idx = thin(len(r.t), points)
         fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=_label(r),
-                                 line=dict(color=_colour(r), width=1.8)))
+                                 line=dict(color=_colour(r), width=2.2, dash=_dash(r))))
     wmax = max(float(np.max(r.w)) for r in rs)
-    fig.update_layout(**_layout(title or "Manipulability along the path", height))
+    fig.update_layout(**_fit_layout(title or "Manipulability along the path", height))
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(title_text="w (m²)", rangemode="tozero", range=[0, max(0.26, 1.05 * wmax)])
     return fig
 
 
 def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, points: int = 1000,
-                 title: str | None = None, height: int = 620) -> go.Figure:
+                 title: str | None = None, height: int = 520) -> go.Figure:
     """What the free component does: top, the relaxed coordinate reached by the pseudo-inverse against the
     planned one (and the run ``reference``, e.g. the inverse CLIK, which follows the plan); bottom, the elbow
-    angle ``theta2`` of both runs, with ``-90°`` (best dexterity) marked."""
+    angle ``theta2`` of both runs, with ``±90°`` (best dexterity) marked."""
     r = _results(relaxed)[0]
     if r.method != "pseudoinverse":
         raise ScaraError(f"drift_figure needs a pseudo-inverse run, got method {r.method!r}")
@@ -224,16 +250,16 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
     fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.x_d[idx, i]), mode="lines", name=f"planned {COMPONENTS[i]}",
                              line=dict(color=PALETTE["reference"], width=1.4, dash="dash")), row=1, col=1)
     fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.x[idx, i]), mode="lines", name=f"{COMPONENTS[i]} · {_label(r)}",
-                             line=dict(color=_colour(r), width=1.8)), row=1, col=1)
+                             line=dict(color=_colour(r), width=2.0)), row=1, col=1)
     runs = [r] + ([_results(reference)[0]] if reference is not None else [])
     for rr in runs:
         ii = thin(len(rr.t), points)
         fig.add_trace(go.Scatter(x=_f(rr.t[ii]), y=_f(rr.q[ii, 1]), mode="lines", name=f"θ2 · {_label(rr)}",
-                                 line=dict(color=_colour(rr), width=1.4, dash="dot" if rr is not r else "solid")),
+                                 line=dict(color=_colour(rr), width=1.8, dash="solid" if rr is r else "dash")),
                       row=2, col=1)
     for s in (-1, 1):
         fig.add_hline(y=s * math.pi / 2, line=dict(color="#999999", width=1, dash="dot"), row=2, col=1)
-    fig.update_layout(**_layout(title or f"The relaxed {COMPONENTS[i]} drifts while θ2 climbs to ±90°", height,
+    fig.update_layout(**_fit_layout(title or f"The relaxed {COMPONENTS[i]} drifts while θ2 climbs to ±90°", height,
                                 legend_rows=2))
     fig.update_yaxes(title_text=f"{COMPONENTS[i]} ({unit})", row=1, col=1)
     fig.update_yaxes(title_text="θ2 (rad)", row=2, col=1)
@@ -242,51 +268,56 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
 
 
 def transpose_stability_figure(stability: TransposeStability, runs: dict, points: int = 1000,
-                               title: str | None = None, height: int = 620) -> go.Figure:
+                               title: str | None = None, height: int = 540) -> go.Figure:
     """Top: the largest gain scale Euler's rule tolerates at each instant, ``2 / (dt mu_max(t))`` for the seed
     direction of ``K``, with the scales of ``runs`` as horizontal lines. Bottom: the position error of each run
-    (``{label: ClikResult}``, e.g. the partial result of a diverged run) on a log axis."""
+    (``{label: ClikResult}``, e.g. the partial result of a diverged run) on a log axis. The runs are drawn in
+    the transpose's colour, told apart by their dash style."""
     st = stability
     dt = 2.0 / st.limit
     idx = thin(len(st.t), points)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     fig.add_trace(go.Scatter(x=_f(st.t[idx]), y=_f(2.0 / (dt * st.mu[idx])), mode="lines",
-                             name="stability limit of the gain scale", line=dict(color=PALETTE["reference"], width=1.6)),
+                             name="largest stable gain scale", line=dict(color=PALETTE["reference"], width=1.6)),
                   row=1, col=1)
-    dashes = ("dash", "dot", "dashdot", "longdash")
+    dashes = ("solid", "dash", "dot", "dashdot")
     for n, (label, r) in enumerate(runs.items()):
         r = _results(r)[0]
         scale = float(np.median(r.gains["K"] / np.asarray(SEED_K)))
-        colour = AXIS_COLOURS[n % 4]
-        fig.add_trace(go.Scatter(x=[st.t[0], st.t[-1]], y=[scale, scale], mode="lines", name=f"{label}: K = {scale:.3f} × seed",
-                                 line=dict(color=colour, dash=dashes[n % 4], width=1.4)), row=1, col=1)
+        line = dict(color=_colour(r), dash=dashes[n % 4], width=2.0)
+        fig.add_trace(go.Scatter(x=[st.t[0], st.t[-1]], y=[scale, scale], mode="lines", legendgroup=label,
+                                 name=f"{r.method}, K = {scale:.3f} × seed ({label})", line=line), row=1, col=1)
         tt, yy = envelope(r.t, r.position_error, points)
         fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=f"‖e_p‖, {label}", showlegend=False,
-                                 line=dict(color=colour, width=1.5)), row=2, col=1)
-    fig.update_layout(**_layout(title or "Jacobian transpose: Euler's stability limit along the path", height,
-                                legend_rows=2))
+                                 legendgroup=label, line=line), row=2, col=1)
+    fig.update_layout(**_fit_layout(title or "Transpose: Euler's limit on the gain", height,
+                                legend_rows=3))
     fig.update_yaxes(title_text="gain scale (× seed K)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
-def damping_figure(runs: dict, points: int = 1500, title: str | None = None, height: int = 680) -> go.Figure:
+def damping_figure(runs: dict, points: int = 1500, title: str | None = None, height: int = 560) -> go.Figure:
     """Runs on a near-singular path (``{label: ClikResult}``): joint-1 rate (top), position error (middle,
-    log) and manipulability (bottom)."""
+    log) and manipulability (bottom). Each run takes its method's colour; runs of the same method are told
+    apart by their dash style (the first solid)."""
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06)
-    for n, (label, r) in enumerate(runs.items()):
+    seen: dict = {}
+    for label, r in runs.items():
         r = _results(r)[0]
-        colour = [PALETTE["inverse"], PALETTE["transpose"], PALETTE["pseudoinverse"], PALETTE["second_order"]][n % 4]
+        k = seen.get(r.method, 0)
+        seen[r.method] = k + 1
+        line = dict(color=_colour(r), width=2.0, dash=DASHES[k % 4])
         idx = thin(len(r.t), points)
         fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.qd[idx, 0]), mode="lines", name=label, legendgroup=label,
-                                 line=dict(color=colour, width=1.6)), row=1, col=1)
+                                 line=line), row=1, col=1)
         tt, yy = envelope(r.t, r.position_error, points)
         fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=label, legendgroup=label, showlegend=False,
-                                 line=dict(color=colour, width=1.6)), row=2, col=1)
+                                 line=line), row=2, col=1)
         fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=label, legendgroup=label,
-                                 showlegend=False, line=dict(color=colour, width=1.6)), row=3, col=1)
-    fig.update_layout(**_layout(title or "Near a singularity: exact and damped inverse", height))
+                                 showlegend=False, line=line), row=3, col=1)
+    fig.update_layout(**_fit_layout(title or "Near a singularity: exact and damped inverse", height))
     fig.update_yaxes(title_text="θ1 rate (rad/s)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_yaxes(title_text="w (m²)", row=3, col=1)
@@ -295,21 +326,21 @@ def damping_figure(runs: dict, points: int = 1500, title: str | None = None, hei
 
 
 def second_order_figure(result: ClikResult, points: int = 1000, title: str | None = None,
-                        height: int = 700) -> go.Figure:
+                        height: int = 560) -> go.Figure:
     """The joint reference a second-order CLIK hands to the controllers: ``q``, ``qd`` and ``qdd`` per joint
-    (revolute joints in rad, rad/s, rad/s²; ``d3`` in m, m/s, m/s²)."""
+    (revolute joints in rad, rad/s, rad/s²; ``d3`` in m, m/s, m/s²), each joint with its colour and dash."""
     r = _results(result)[0]
     if r.qdd is None:
         raise ScaraError("second_order_figure needs a clik2 result (with qdd)")
     idx = thin(len(r.t), points)
-    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06)
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05)
     for row, data in ((1, r.q), (2, r.qd), (3, r.qdd)):
         for j, name in enumerate(_JOINTS):
             fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(data[idx, j]), mode="lines", name=f"{name} · second order",
                                      legendgroup=name, showlegend=row == 1,
-                                     line=dict(color=JOINT_COLOURS[j], width=1.4)), row=row, col=1)
-    fig.update_layout(**_layout(title or "Joint reference from the second-order CLIK", height))
-    fig.update_yaxes(title_text="q (rad; d3 in m)", row=1, col=1)
+                                     line=dict(color=JOINT_COLOURS[j], width=1.6, dash=DASHES[j])), row=row, col=1)
+    fig.update_layout(**_fit_layout(title or "Joint reference from the second-order CLIK", height))
+    fig.update_yaxes(title_text="q (rad; m)", row=1, col=1)
     fig.update_yaxes(title_text="q̇ (rad/s; m/s)", row=2, col=1)
     fig.update_yaxes(title_text="q̈ (rad/s²; m/s²)", row=3, col=1)
     fig.update_xaxes(title_text="t (s)", row=3, col=1)
@@ -320,13 +351,14 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
                        height: int = 440) -> go.Figure:
     """Decay of an initial error: ``|e_i(t)|`` of each component over the first ``horizon`` seconds on a log
     axis, against the continuous law ``|e_i(0)| exp(-K_i t)`` (dashed) and Euler's ``|e_i(0)| (1 - dt K_i)^k``
-    (dots)."""
+    (open markers, one symbol per component)."""
     r = _results(result)[0]
     if "K" not in r.gains:
         raise ScaraError("convergence_figure needs a first-order CLIK result (with gains K)")
     K = np.asarray(r.gains["K"])
     n = min(len(r.t), int(round(horizon / r.dt)) + 1)
     t = r.t[:n]
+    symbols = ("circle-open", "square-open", "diamond-open", "triangle-up-open")
     fig = go.Figure()
     for i, name in enumerate(COMPONENTS):
         e0 = abs(r.e[0, i])
@@ -340,25 +372,25 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
                                  name="continuous law", showlegend=False, line=dict(color=c, width=1.2, dash="dash")))
         fig.add_trace(go.Scatter(x=_f(t), y=_f(e0 * (1 - r.dt * K[i]) ** np.arange(n)), mode="markers",
                                  legendgroup=name, name="Euler", showlegend=False,
-                                 marker=dict(color=c, size=4, symbol="circle-open")))
+                                 marker=dict(color=c, size=6, symbol=symbols[i])))
     # legend keys for the two predictions, drawn once in neutral grey
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="e(0) exp(-K t)",
                              line=dict(color="#777777", width=1.2, dash="dash")))
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="markers", name="e(0) (1 - dt K)^k",
-                             marker=dict(color="#777777", size=5, symbol="circle-open")))
-    fig.update_layout(**_layout(title or "Decay of an initial error", height, legend_rows=2))
+                             marker=dict(color="#777777", size=6, symbol="circle-open")))
+    fig.update_layout(**_fit_layout(title or "Decay of an initial error", height, legend_rows=3))
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e_i| (m; rad for φ)")
     return fig
 
 
 def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), points: int = 600,
-                       title: str | None = None, height: int = 520) -> go.Figure:
+                       title: str | None = None, height: int = 500) -> go.Figure:
     """Static slider over the gain: for each scale ``c`` (``K = c`` × the seed ``diag(400, 400, 400, 100)``) the
     position-error envelope of each method on ``traj``. Works with no kernel (slider steps toggle visibility).
 
     Scales past a method's discrete-time stability limit are skipped for that method (the curve is absent and
-    the step label says so). At most 25 scales.
+    the title says so). At most 25 scales.
     """
     scales = np.asarray(GAIN_SCALES if scales is None else scales, dtype=float)
     if not 1 <= len(scales) <= 25:
@@ -377,7 +409,8 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
                 tt, yy = np.array([]), np.array([])
                 note.append(f"{m}: unstable")
             fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=METHOD_LABELS.get(m, m),
-                                     visible=False, line=dict(color=PALETTE.get(m, "#000000"), width=1.5)))
+                                     visible=False, line=dict(color=PALETTE.get(m, "#000000"), width=1.8,
+                                                              dash=METHOD_DASHES.get(m, "solid"))))
         notes.append("; ".join(note))
     nm = len(methods)
     active = int(np.argmin(np.abs(scales - 1.0)))
@@ -389,8 +422,8 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
         for k in range(nm):
             vis[i * nm + k] = True
         steps.append({"label": f"{s:.2f}", "method": "update",
-                      "args": [{"visible": vis}, {"title.text": f"K = {s:.2f} × seed: {notes[i]}"}]})
-    lay = _layout(f"K = {scales[active]:.2f} × seed: {notes[active]}", height)
+                      "args": [{"visible": vis}, {"title.text": f"K = {s:.2f} × seed<br>{notes[i]}"}]})
+    lay = _fit_layout(f"K = {scales[active]:.2f} × seed<br>{notes[active]}", height)
     fig.update_layout(**lay, sliders=[slider(steps, "gain scale × seed K: ", active=active)])
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", range=[-10.5, -1.5])

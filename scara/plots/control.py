@@ -6,6 +6,9 @@ the live panel's summary figure.
 Builders take :class:`scara.simulate.SimulationResult` objects (a dict ``{label: result}`` where several are
 compared) and compute nothing but what they draw. Long runs are thinned to about ``points`` samples per trace;
 error curves on log axes keep the largest value of each thinned interval (an envelope), so no peak is lost.
+Every controller keeps its colour (``PALETTE``) and its dash style (``CONTROLLER_DASHES``) across the chapter,
+so that the curves stay apart in greyscale; figures are one column wide, with short titles and a legend that
+is given room as it wraps, so that they read on a phone-width page.
 """
 from __future__ import annotations
 
@@ -14,14 +17,14 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..errors import ScaraError
-from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, slider
-from .clik import _method_menu, envelope, thin
-from .kinematics import _layout
+from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
+from .clik import envelope, thin
+from .kinematics import _layout, finish_layout, legend_entries, legend_rows
 
 __all__ = [
-    "CONTROLLER_LABELS", "joint_motion_figure", "operational_error_figure", "error_norm_figure", "torque_figure",
-    "payload_estimate_figure", "robust_term_figure", "boundary_layer_slider_figure", "steady_state_figure",
-    "payload_sweep_figure", "tuning_figure",
+    "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
+    "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
+    "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "tuning_figure",
 ]
 
 #: legend names of the controllers (keys: the controllers' ``name``, also the keys of ``PALETTE``)
@@ -32,9 +35,13 @@ CONTROLLER_LABELS = {
     "operational_noint": "operational ID, no integral",
     "pd_gravity": "PD + gravity",
 }
+#: one dash style per controller (colours: ``PALETTE``), so that the curves stay apart in greyscale
+CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot", "operational_noint": "dashdot",
+                     "pd_gravity": "longdash"}
 _JOINTS = ("θ1", "θ2", "d3", "θ4")
 _COMPONENTS = ("x", "y", "z", "φ")
 _FLOOR = 1e-12
+_MENU_PX = 36  # room for the dropdown between the legend and the plot
 
 
 def _f(a):
@@ -54,6 +61,10 @@ def _colour(r) -> str:
     return PALETTE.get(_name(r), PALETTE["reference"])
 
 
+def _dash(r) -> str:
+    return CONTROLLER_DASHES.get(_name(r), "solid")
+
+
 def _as_dict(results) -> dict:
     if hasattr(results, "tau") and hasattr(results, "e"):
         return {_label(results): results}
@@ -71,111 +82,171 @@ def _line(x, y, name, colour, width=1.5, dash=None, showlegend=True, legendgroup
                       line=dict(color=colour, width=width, dash=dash), **kw)
 
 
-def joint_motion_figure(results, points: int = 350, title: str | None = None, height: int = 700) -> go.Figure:
-    """Joint positions, velocities and accelerations (rows) of each run, one run at a time (dropdown): revolute
-    joints on the left (rad, rad/s, rad/s^2), the prismatic joint d3 on the right (m, m/s, m/s^2)."""
+def _finish(fig: go.Figure, title: str, height: int, groups: list | None = None, menu: list | None = None,
+            bottom: int | None = None) -> go.Figure:
+    """The book's layout (:func:`scara.plots.kinematics.finish_layout`: short title, legend under it, room for the
+    legend as it wraps at phone width), with the legend rows counted on the traces one dropdown entry shows
+    (``groups``: trace indices per entry) and, when ``menu`` (a list of ``(label, title)``, one per group) is
+    given, a dropdown between the legend and the plot that shows one group at a time."""
+    finish_layout(fig, title, height)
+    if groups:
+        rows = max(legend_rows([fig.data[k].name for k in g if fig.data[k].showlegend is not False])
+                   for g in groups)
+    else:
+        rows = legend_rows(legend_entries(fig))
+    lines = title.count("<br>") + 1
+    title_px = 22 * lines
+    legend_px = 21 * rows
+    top = 14 + title_px + legend_px + (_MENU_PX if menu else 0) + 8
+    margin = dict(t=top) if bottom is None else dict(t=top, b=bottom)
+    # plotly anchors a title of several lines about one line too high ("top" is not the first line's top):
+    # lower it so that the first line is not cut off at the top of the figure
+    fig.update_layout(margin=margin, legend=dict(tracegroupgap=0), showlegend=rows > 0,
+                      title_y=1.0 - (10 + 18 * (lines - 1)) / height)
+    if menu:
+        n = len(fig.data)
+        buttons = []
+        for group, (label, head) in zip(groups, menu):
+            vis = [k in group for k in range(n)]
+            buttons.append(dict(label=label, method="update", args=[{"visible": vis}, {"title.text": head}]))
+        for k in range(n):
+            fig.data[k].visible = k in groups[0]
+        plot_px = height - top - (fig.layout.margin.b if fig.layout.margin.b is not None else 50)
+        fig.update_layout(title_text=menu[0][1],
+                          updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right",
+                                            y=1.0 + 6 / plot_px, yanchor="bottom", showactive=True, active=0,
+                                            pad=dict(t=0, b=0), font=dict(size=12))])
+    return fig
+
+
+def _two_lines(head: str, label: str) -> str:
+    return f"{head}<br>{label}"
+
+
+def joint_motion_figure(results, points: int = 350, title: str | None = None, height: int = 760) -> go.Figure:
+    """Joint motion of each run, one run at a time (dropdown), in four stacked panels sharing the time axis:
+    the revolute joints ``θ1, θ2, θ4`` (rad), the quill ``d3`` (m), the joint velocities (rad/s and m/s) and
+    accelerations (rad/s² and m/s²). Each joint keeps its colour and dash style. The acceleration axis is
+    scaled to the motion after the first 50 ms; the start transient of ``d̈3`` (the unknown payload pulling
+    the quill down before the controller reacts) runs off that scale, and a note gives its peak."""
     runs = _as_dict(results)
-    fig = make_subplots(rows=3, cols=2, shared_xaxes=True, column_widths=[0.62, 0.38], horizontal_spacing=0.1,
-                        vertical_spacing=0.06)
-    groups, titles = [], []
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04, row_heights=[0.3, 0.2, 0.25, 0.25])
+    groups, menu, ranges, notes = [], [], [], []
+    head = title or "Joint motion"
     for label, r in runs.items():
         idx = thin(len(r.t), points)
+        # keep the first samples whole: the start transient is a few milliseconds long
+        idx = np.unique(np.concatenate([np.arange(min(len(r.t), 40)), idx]))
         start = len(fig.data)
-        for row, data in enumerate((r.q, r.qd, r.qdd), start=1):
-            for j in range(4):
-                fig.add_trace(_line(r.t[idx], data[idx, j], _JOINTS[j], JOINT_COLOURS[j], legendgroup=_JOINTS[j],
-                                    showlegend=row == 1), row=row, col=2 if j == 2 else 1)
+        for j in range(4):
+            style = dict(colour=JOINT_COLOURS[j], dash=DASHES[j], width=1.6, legendgroup=_JOINTS[j])
+            fig.add_trace(_line(r.t[idx], r.q[idx, j], f"{_JOINTS[j]} · {label}", showlegend=True, **style),
+                          row=2 if j == 2 else 1, col=1)
+            fig.add_trace(_line(r.t[idx], r.qd[idx, j], f"{_JOINTS[j]} rate · {label}", showlegend=False, **style),
+                          row=3, col=1)
+            fig.add_trace(_line(r.t[idx], r.qdd[idx, j], f"{_JOINTS[j]} acceleration · {label}", showlegend=False,
+                                **style), row=4, col=1)
         groups.append(list(range(start, len(fig.data))))
-        titles.append((title or "Joint motion") + f", {label}")
-    _method_menu(fig, groups, titles)
-    fig.update_layout(**_layout(titles[0], height))
-    for row, (u1, u2) in enumerate((("q (rad)", "d3 (m)"), ("q̇ (rad/s)", "ḋ3 (m/s)"),
-                                   ("q̈ (rad/s²)", "d̈3 (m/s²)")), start=1):
-        fig.update_yaxes(title_text=u1, row=row, col=1)
-        fig.update_yaxes(title_text=u2, row=row, col=2)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=2)
+        menu.append((label, _two_lines(head, label)))
+        late = r.t >= min(0.05, r.t[-1])
+        lo, hi = float(r.qdd[late].min()), float(r.qdd[late].max())
+        pad = 0.1 * max(hi - lo, 1e-9)
+        ranges.append([lo - pad, hi + pad])
+        k = int(np.argmax(np.abs(r.qdd[:, 2])))
+        peak = float(r.qdd[k, 2])
+        notes.append(f"d̈3 peaks at {peak:.3g} m/s² (t = {r.t[k]:.3f} s)" if not lo - pad <= peak <= hi + pad else "")
+    _finish(fig, menu[0][1], height, groups, menu)
+    fig.update_layout(annotations=[dict(text=notes[0], xref="x4 domain", yref="y4 domain", x=1.0, y=1.0,
+                                        xanchor="right", yanchor="bottom", showarrow=False, font=dict(size=11))])
+    fig.update_yaxes(range=ranges[0], row=4, col=1)
+    for b, rg, note in zip(fig.layout.updatemenus[0].buttons, ranges, notes):
+        b.args[1].update({"yaxis4.range": rg, "annotations[0].text": note})
+    for row, text in enumerate(("θ1, θ2, θ4 (rad)", "d3 (m)", "velocity<br>(rad/s, m/s)",
+                                "acceleration<br>(rad/s², m/s²)"), start=1):
+        fig.update_yaxes(title_text=text, row=row, col=1)
+    fig.update_xaxes(title_text="t (s)", row=4, col=1)
     return fig
 
 
 def operational_error_figure(results, points: int = 600, title: str | None = None, height: int = 600) -> go.Figure:
     """Operational error ``x_d - x_e`` of each run, one run at a time (dropdown): the components x, y, z (mm)
-    and phi (mrad) on top, the norm of the position error (m, log scale, envelope) below."""
+    and phi (mrad) on top, the norm of the position error (m, log scale, envelope, in the controller's colour)
+    below."""
     runs = _as_dict(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
-    groups, titles = [], []
+    groups, menu = [], []
+    head = title or "Operational error x_d − x_e"
     for label, r in runs.items():
         idx = thin(len(r.t), points)
         start = len(fig.data)
         for i in range(4):
-            name = f"e_{_COMPONENTS[i]} ({'mrad' if i == 3 else 'mm'})"
-            fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], name, AXIS_COLOURS[i]), row=1, col=1)
+            fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], f"e_{_COMPONENTS[i]} · {label}", AXIS_COLOURS[i],
+                                dash=DASHES[i]), row=1, col=1)
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, "‖e_p‖ (m)", _colour(r), width=2), row=2, col=1)
+        fig.add_trace(_line(tt, yy, f"‖e_p‖ · {label}", _colour(r), width=2, dash=_dash(r)), row=2, col=1)
         groups.append(list(range(start, len(fig.data))))
-        titles.append((title or "Operational error x_d − x_e") + f", {label}")
-    _method_menu(fig, groups, titles)
-    fig.update_layout(**_layout(titles[0], height))
-    fig.update_yaxes(title_text="e (mm, mrad)", row=1, col=1)
+        menu.append((label, _two_lines(head, label)))
+    _finish(fig, menu[0][1], height, groups, menu)
+    fig.update_yaxes(title_text="e_x, e_y, e_z (mm)<br>e_φ (mrad)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
-def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int = 420,
+def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int = 460,
                       settle: float | None = 1.0) -> go.Figure:
-    """The norm of the position error ``||p_d - p_e||`` (m, log scale, envelope) of several runs together; a
-    dotted line marks the end of the first ``settle`` seconds that the comparison table leaves out."""
+    """The norm of the position error ``||p_d - p_e||`` (m, log scale, envelope) of several runs together, each
+    in its controller's colour and dash style; a dotted line marks the end of the first ``settle`` seconds that
+    the comparison table leaves out."""
     runs = _as_dict(results)
     fig = go.Figure()
     for label, r in runs.items():
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, label, _colour(r), width=1.8))
+        fig.add_trace(_line(tt, yy, label, _colour(r), width=2, dash=_dash(r)))
     if settle:
         fig.add_vline(x=settle, line=dict(color="#777777", dash="dot", width=1))
-    fig.update_layout(**_layout(title or "Position error of each controller (5 kg payload, unknown to them)", height))
+    _finish(fig, title or "Position error of each controller<br>(5 kg payload, unknown to them)", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖p_d − p_e‖ (m)")
     fig.update_xaxes(title_text="t (s)")
     return fig
 
 
-def torque_figure(results, points: int = 500, title: str | None = None, height: int = 600) -> go.Figure:
-    """The torques and the quill's force (one panel per joint: N m, N m, N, N m) of several runs overlaid."""
+def torque_figure(results, points: int = 500, title: str | None = None, height: int = 760) -> go.Figure:
+    """The torques and the quill's force of several runs overlaid, one panel per joint stacked on a shared time
+    axis (N m, N m, N, N m); each controller in its colour and dash style."""
     runs = _as_dict(results)
     names = ("τ1 (N m)", "τ2 (N m)", "f3 (N)", "τ4 (N m)")
-    fig = make_subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.12, horizontal_spacing=0.1,
-                        subplot_titles=[f"joint {j + 1}" for j in range(4)])
-    for n, (label, r) in enumerate(runs.items()):
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04)
+    for label, r in runs.items():
         idx = thin(len(r.t), points)
         for j in range(4):
-            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, _colour(r), width=1.3, legendgroup=label,
-                                showlegend=j == 0, dash=("solid", "dash", "dot", "dashdot")[n % 4]),
-                          row=j // 2 + 1, col=j % 2 + 1)
-    fig.update_layout(**_layout(title or "Joint torques and the quill's force", height, subplot_titles=True))
+            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, _colour(r), width=1.6, legendgroup=label,
+                                showlegend=j == 0, dash=_dash(r)), row=j + 1, col=1)
+    _finish(fig, title or "Joint torques and the quill's force", height)
     for j in range(4):
-        fig.update_yaxes(title_text=names[j], row=j // 2 + 1, col=j % 2 + 1)
-        if j >= 2:
-            fig.update_xaxes(title_text="t (s)", row=2, col=j % 2 + 1)
+        fig.update_yaxes(title_text=names[j], row=j + 1, col=1)
+    fig.update_xaxes(title_text="t (s)", row=4, col=1)
     return fig
 
 
 def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, points: int = 1000,
-                            title: str | None = None, height: int = 520) -> go.Figure:
+                            title: str | None = None, height: int = 540) -> go.Figure:
     """The adaptive payload estimate: its first ``horizon`` seconds against the true mass (top, kg), and the
     estimation error ``|m_hat - m_L|`` over the whole run (bottom, kg, log scale)."""
     if "payload_estimate" not in getattr(result, "signals", {}):
         raise ScaraError("this run carries no payload_estimate: it is not an adaptive run")
     est = result.payload_estimate
     t = result.t
-    fig = make_subplots(rows=2, cols=1, vertical_spacing=0.14, row_heights=[0.55, 0.45])
+    fig = make_subplots(rows=2, cols=1, vertical_spacing=0.16, row_heights=[0.55, 0.45])
     first = t <= horizon + 1e-12
     idx = np.flatnonzero(first)[thin(int(first.sum()), points)]
-    fig.add_trace(_line(t[idx], est[idx], "estimate m̂_L", _colour(result), width=2), row=1, col=1)
+    fig.add_trace(_line(t[idx], est[idx], f"m̂_L · {_label(result)}", _colour(result), width=2.2, dash=_dash(result)),
+                  row=1, col=1)
     fig.add_trace(_line([0, horizon], [true_mass, true_mass], f"true payload {true_mass:g} kg",
-                        PALETTE["reference"], dash="dash", width=1.2), row=1, col=1)
+                        PALETTE["reference"], dash="dot", width=1.4), row=1, col=1)
     tt, yy = envelope(t, est - true_mass, points)
-    fig.add_trace(_line(tt, yy, "|m̂_L − m_L|", AXIS_COLOURS[1], width=1.5), row=2, col=1)
-    fig.update_layout(**_layout(title or "Adaptive control: the payload estimate", height))
+    fig.add_trace(_line(tt, yy, "|m̂_L − m_L|", AXIS_COLOURS[0], width=1.6), row=2, col=1)
+    _finish(fig, title or "Adaptive control: the payload estimate", height)
     fig.update_yaxes(title_text="m̂_L (kg)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="|m̂_L − m_L| (kg)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=1, col=1)
@@ -184,9 +255,10 @@ def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, poin
 
 
 def robust_term_figure(result, epsilon: float, window: tuple | None = None, points: int = 1500,
-                       title: str | None = None, height: int = 560) -> go.Figure:
-    """The robust term: ``||z||`` against the boundary layer ``epsilon`` (top, log scale) and the components
-    of ``w`` (bottom, rad/s^2 and m/s^2), over ``window = (t0, t1)`` (s; default the whole run)."""
+                       title: str | None = None, height: int = 580) -> go.Figure:
+    """The robust term: ``||z||`` (rad/s and m/s mixed, log scale) against the boundary layer ``epsilon``
+    (top) and the components of ``w`` (bottom, rad/s^2 and m/s^2), over ``window = (t0, t1)`` (s; default the
+    whole run)."""
     t = result.t
     sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
     idx = np.flatnonzero(sel)
@@ -195,25 +267,31 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
     tt, zz = envelope(t[idx], z, points)
     sub = idx[thin(len(idx), points)]
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(_line(tt, zz, "‖z‖", _colour(result), width=1.5), row=1, col=1)
-    fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"ε = {epsilon:g}", PALETTE["reference"],
-                        dash="dash", width=1.2), row=1, col=1)
+    fig.add_trace(_line(tt, zz, f"‖z‖ · {_label(result)}", _colour(result), width=2, dash=_dash(result)),
+                  row=1, col=1)
+    fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"layer ε = {epsilon:g}", PALETTE["reference"],
+                        dash="dot", width=1.4), row=1, col=1)
     for j in range(4):
-        fig.add_trace(_line(t[sub], w[np.searchsorted(idx, sub), j], f"w_{j + 1}", JOINT_COLOURS[j], width=1.2),
-                      row=2, col=1)
-    fig.update_layout(**_layout(title or "Robust control: the sliding variable and the robust term", height))
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (1/s units)", row=1, col=1)
+        fig.add_trace(_line(t[sub], w[np.searchsorted(idx, sub), j], f"w_{j + 1}", JOINT_COLOURS[j], width=1.5,
+                            dash=DASHES[j]), row=2, col=1)
+    _finish(fig, title or "Robust control: ‖z‖ and the term w", height)
+    # at least two decades on the log axis, so that it is labelled in powers of ten
+    lo = np.log10(max(min(float(zz.min()), epsilon), _FLOOR))
+    hi = np.log10(max(float(zz.max()), epsilon))
+    mid, half = 0.5 * (lo + hi), max(0.5 * (hi - lo) + 0.2, 1.0)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (rad/s, m/s)", range=[mid - half, mid + half],
+                     row=1, col=1)
     fig.update_yaxes(title_text="w (rad/s², m/s²)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
 def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0, 40.15), title: str | None = None,
-                                 height: int = 620) -> go.Figure:
+                                 height: int = 640) -> go.Figure:
     """Static slider over the boundary-layer width: for each ``{epsilon: result}`` of a robust run, the torques
     of the revolute joints (top, N m; the quill's force hardly chatters) and ``||z||`` against ``epsilon``
     (bottom, log) over ``window`` at full sampling, so that the sample-to-sample switching below ``bound`` (the
-    sampled layer's stability limit) is visible."""
+    sampled layer's stability limit) is visible. The title (two lines) says whether the step chatters."""
     if not runs:
         raise ScaraError("give at least one {epsilon: result} pair")
     eps_list = sorted(runs)
@@ -225,61 +303,60 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
         sel = (r.t >= window[0]) & (r.t <= window[1])
         t = r.t[sel]
         for j in joints:
-            fig.add_trace(_line(t, r.tau[sel, j], f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.2, visible=n == 0,
-                                legendgroup=f"tau{j}"), row=1, col=1)
-        col = PALETTE["robust"] if eps > bound else AXIS_COLOURS[1]
-        fig.add_trace(_line(t, np.maximum(r.z_norm[sel], _FLOOR), "‖z‖", col, width=1.4, visible=n == 0), row=2, col=1)
-        fig.add_trace(_line([t[0], t[-1]], [eps, eps], "ε", PALETTE["reference"], dash="dash", width=1.2,
+            # solid lines: a dash pattern on a torque that switches every sample would only add noise
+            fig.add_trace(_line(t, r.tau[sel, j], f"τ{j + 1}", JOINT_COLOURS[j], width=1.3,
+                                visible=n == 0, legendgroup=f"tau{j}"), row=1, col=1)
+        fig.add_trace(_line(t, np.maximum(r.z_norm[sel], _FLOOR), "‖z‖ · robust", PALETTE["robust"], width=1.8,
                             visible=n == 0), row=2, col=1)
-    steps = []
-    for n, eps in enumerate(eps_list):
-        vis = [False] * (per * len(eps_list))
-        vis[per * n:per * n + per] = [True] * per
+        fig.add_trace(_line([t[0], t[-1]], [eps, eps], "layer ε", PALETTE["reference"], dash="dot", width=1.4,
+                            visible=n == 0), row=2, col=1)
+
+    def head(eps):
         tag = "chatters" if eps <= bound else "smooth"
-        steps.append(dict(label=f"{eps:.3g}", method="update",
-                          args=[{"visible": vis}, {"title.text": (title or "Boundary layer") +
-                                                   f": ε = {eps:.3g} ({tag}; limit {bound:.3g})"}]))
-    first = eps_list[0]
-    lay = _layout((title or "Boundary layer") + f": ε = {first:.3g} ({'chatters' if first <= bound else 'smooth'}; "
-                  f"limit {bound:.3g})", height)
-    lay["sliders"] = [slider(steps, "ε = ")]
-    lay["margin"] = dict(lay["margin"], b=110)
-    fig.update_layout(**lay)
+        return f"{title or 'Robust control, boundary layer'}<br>ε = {eps:.3g}: {tag} (limit {bound:.3g})"
+
+    steps = [dict(label=f"{eps:.3g}", method="update",
+                  args=[{"visible": [per * n <= i < per * (n + 1) for i in range(per * len(eps_list))]},
+                        {"title.text": head(eps)}])
+             for n, eps in enumerate(eps_list)]
+    _finish(fig, head(eps_list[0]), height, groups=[list(range(per))], bottom=120)
+    fig.update_layout(sliders=[slider(steps, "ε = ")])
     fig.update_yaxes(title_text="τ (N m)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖", row=2, col=1)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (rad/s, m/s)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
 def steady_state_figure(with_integral, without_integral, predicted: float, integral_target: float,
-                        points: int = 1000, title: str | None = None, height: int = 560) -> go.Figure:
+                        points: int = 1000, title: str | None = None, height: int = 580) -> go.Figure:
     """Vertical error ``e_z`` (mm) of the operational controller without and with integral action, against the
     predicted ``m_L g0 / (B33_hat K_P,z)`` (top); the integral action ``K_I s_z`` (m/s^2) approaching the
     acceleration ``m_L g0 / B33_hat`` it must supply (bottom)."""
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in (without_integral, with_integral):
         idx = thin(len(r.t), points)
-        fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], _label(r), _colour(r), width=1.8), row=1, col=1)
+        fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], _label(r), _colour(r), width=2.2, dash=_dash(r)),
+                      row=1, col=1)
     t_end = with_integral.t[-1]
-    fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "m_L g0 / (B̂33 K_P,z)", PALETTE["reference"],
-                        dash="dash", width=1.2), row=1, col=1)
+    fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "theory m_L g0 / (B̂33 K_P,z)", PALETTE["reference"],
+                        dash="dot", width=1.2), row=1, col=1)
     idx = thin(len(with_integral.t), points)
-    fig.add_trace(_line(with_integral.t[idx], with_integral.integral_action_z[idx], "integral action K_I s_z",
-                        PALETTE["operational"], width=1.5, dash="dot"), row=2, col=1)
-    fig.add_trace(_line([0, t_end], [integral_target] * 2, "m_L g0 / B̂33", PALETTE["reference"], dash="dash",
-                        width=1.2, showlegend=False), row=2, col=1)
-    fig.update_layout(**_layout(title or "The payload's steady-state error and the integral action", height,
-                                legend_rows=2))
+    fig.add_trace(_line(with_integral.t[idx], with_integral.integral_action_z[idx],
+                        f"K_I s_z · {_label(with_integral)}", _colour(with_integral), width=2.2,
+                        dash=_dash(with_integral)), row=2, col=1)
+    fig.add_trace(_line([0, t_end], [integral_target] * 2, "m_L g0 / B̂33", PALETTE["reference"], dash="dot",
+                        width=1.2), row=2, col=1)
+    _finish(fig, title or "Steady-state error and integral action", height)
     fig.update_yaxes(title_text="e_z (mm)", row=1, col=1)
     fig.update_yaxes(title_text="K_I s_z (m/s²)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig
 
 
-def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int = 440,
+def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int = 480,
                          ylabel: str = "max ‖p_d − p_e‖ after 1 s (m)") -> go.Figure:
     """An error measure (log scale) against the payload mass (kg) for each controller: ``errors`` maps a
-    controller name (a key of ``PALETTE``) to one value per mass."""
+    controller name (a key of ``PALETTE``) to one value per mass; colour, dash and marker name the controller."""
     masses = np.asarray(masses, dtype=float)
     fig = go.Figure()
     for n, (name, vals) in enumerate(errors.items()):
@@ -289,8 +366,9 @@ def payload_sweep_figure(masses, errors: dict, title: str | None = None, height:
         fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, _FLOOR), mode="lines+markers",
                                  name=CONTROLLER_LABELS.get(name, name),
                                  marker=dict(size=8, symbol=("circle", "square", "diamond", "triangle-up")[n % 4]),
-                                 line=dict(color=PALETTE.get(name, PALETTE["reference"]), width=2)))
-    fig.update_layout(**_layout(title or "Tracking error against the payload mass", height, legend_rows=2))
+                                 line=dict(color=PALETTE.get(name, PALETTE["reference"]), width=2,
+                                           dash=CONTROLLER_DASHES.get(name, "solid"))))
+    _finish(fig, title or "Tracking error against the payload", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text=ylabel)
     fig.update_xaxes(title_text="payload m_L (kg)")
     return fig

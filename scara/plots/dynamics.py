@@ -11,10 +11,11 @@ from plotly.subplots import make_subplots
 from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError
 from ..kinematics import _params
-from ._common import JOINT_COLOURS, PALETTE, base_layout, slider
+from ._common import DASHES, JOINT_COLOURS, base_layout, slider
+from .clik import _fit_layout
 
 __all__ = [
-    "TERM_COLOURS", "TERM_LABELS", "JOINT_UNITS", "decimate", "torque_share_figure", "torque_terms_figure",
+    "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "decimate", "torque_share_figure", "torque_terms_figure",
     "payload_torque_figure", "payload_slider_figure", "energy_figure", "inertia_figure",
 ]
 
@@ -26,6 +27,11 @@ TERM_LABELS = {"links": "link and quill inertia", "rotors": "rotor inertia and c
 #: generalised-force unit of each joint
 JOINT_UNITS = ("N m", "N m", "N", "N m")
 _JOINT_NAMES = ("joint 1 (θ1)", "joint 2 (θ2)", "joint 3 (d3)", "joint 4 (θ4)")
+_JOINT_SHORT = ("joint 1", "joint 2", "joint 3", "joint 4")
+#: a dash style and a bar hatch per term, so that the terms stay apart in greyscale
+TERM_DASHES = {"links": "solid", "rotors": "dash", "payload": "dot", "coriolis": "dashdot", "friction": "longdash",
+               "gravity": "solid"}
+TERM_PATTERNS = {"links": "", "rotors": "/", "payload": ".", "coriolis": "x", "friction": "-", "gravity": ""}
 
 
 def decimate(n: int, target: int = 2000) -> np.ndarray:
@@ -52,111 +58,139 @@ def _rms(a):
     return np.sqrt(np.mean(np.asarray(a) ** 2, axis=0))
 
 
-def torque_share_figure(breakdown: dict, title: str = "Where the joint torque goes along the reference motion",
-                        payload_label: str | None = None) -> go.Figure:
+def torque_share_figure(breakdown: dict, title: str = "Where the joint torque goes",
+                        payload_label: str | None = None, height: int = 480) -> go.Figure:
     """Stacked bars, one per joint: the share of each term's RMS value in the sum of the terms' RMS values (%),
-    with the RMS itself (N m or N) in the hover. ``breakdown`` is :func:`scara.dynamics.torque_breakdown`."""
+    with the RMS itself (N m or N) in the hover. ``breakdown`` is :func:`scara.dynamics.torque_breakdown`.
+    Each term has its colour and a hatch pattern, so the stack also reads in greyscale."""
     rms = {k: _rms(breakdown[k]) for k in TORQUE_TERMS}
     total = sum(rms.values())
     total = np.where(total > 0, total, 1.0)
     fig = go.Figure()
     for k in TORQUE_TERMS:
         label = TERM_LABELS[k] if k != "payload" or payload_label is None else payload_label
-        fig.add_bar(x=list(_JOINT_NAMES), y=100 * rms[k] / total, name=label, marker_color=TERM_COLOURS[k],
+        fig.add_bar(x=list(_JOINT_SHORT), y=100 * rms[k] / total, name=label, marker_color=TERM_COLOURS[k],
+                    marker_pattern_shape=TERM_PATTERNS[k], marker_pattern_fgcolor="#FFFFFF",
                     customdata=np.column_stack([rms[k], list(JOINT_UNITS)]),
                     hovertemplate="%{x}<br>" + label + ": %{y:.2f} % (RMS %{customdata[0]:.3g} %{customdata[1]})"
                                   "<extra></extra>")
-    fig.update_layout(**base_layout(title, 440), barmode="stack")
-    fig.update_layout(legend=dict(orientation="v", yanchor="top", y=1.0, xanchor="left", x=1.02, traceorder="reversed"),
-                      margin=dict(l=60, r=20, t=60, b=50))
-    fig.update_yaxes(title_text="share of the summed RMS torques (%)", range=[0, 100])
+    fig.update_layout(**_fit_layout(title, height, legend_rows=2), barmode="stack")
+    fig.update_yaxes(title_text="share of summed RMS torques (%)", range=[0, 100])
     fig.update_xaxes(title_text="joint")
     return fig
 
 
 def torque_terms_figure(t, breakdown: dict, target: int = 1500,
-                        title: str = "Torque terms along the reference motion") -> go.Figure:
-    """One row per joint: every term of :func:`~scara.dynamics.torque_breakdown` against time (decimated)."""
+                        title: str = "Torque terms", height: int = 500) -> go.Figure:
+    """Every term of :func:`~scara.dynamics.torque_breakdown` against time (decimated), for one joint at a
+    time: a dropdown (works on a static page) picks the joint, joint 1 first. Each term keeps its colour and
+    gets its own dash style."""
     t = np.asarray(t)
     idx = decimate(len(t), target)
-    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
-                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
+    fig = go.Figure()
+    n_terms = len(TORQUE_TERMS)
     for j in range(4):
-        for k in TORQUE_TERMS:
+        for n, k in enumerate(TORQUE_TERMS):
             y = np.asarray(breakdown[k])[idx, j]
-            fig.add_scatter(x=_f32(t[idx]), y=_f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k, showlegend=(j == 0),
-                            line=dict(color=TERM_COLOURS[k], width=1.5), row=j + 1, col=1)
-        fig.update_yaxes(title_text=JOINT_UNITS[j], row=j + 1, col=1)
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    fig.update_layout(**base_layout(title, 860))
-    _legend_below(fig, 860)
+            fig.add_scatter(x=_f32(t[idx]), y=_f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k,
+                            visible=(j == 0), line=dict(color=TERM_COLOURS[k], width=1.8, dash=TERM_DASHES[k]))
+    buttons = []
+    for j in range(4):
+        vis = [jj == j for jj in range(4) for _ in range(n_terms)]
+        buttons.append(dict(label=_JOINT_NAMES[j], method="update",
+                            args=[{"visible": vis}, {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"}]))
+    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
+    fig.update_layout(updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right", y=1.0,
+                                        yanchor="bottom", pad=dict(b=6), showactive=True, active=0)])
+    fig.update_xaxes(title_text="t (s)")
+    fig.update_yaxes(title_text=f"{_JOINT_SHORT[0]} ({JOINT_UNITS[0]})")
     return fig
 
 
 def payload_torque_figure(t, torques: dict, target: int = 1500,
-                          title: str = "Torque to follow the second-order CLIK reference") -> go.Figure:
-    """One row per joint, one line per case: ``torques`` maps a label (e.g. ``"no payload"``, ``"5 kg"``) to
-    an (N, 4) torque series."""
+                          title: str = "Torque to follow the reference",
+                          height: int = 520) -> go.Figure:
+    """Torques of several cases (``torques`` maps a label, e.g. ``"no payload"``, ``"5 kg"``, to an (N, 4)
+    series): the revolute joints 1, 2, 4 on top (N m, colour per joint), the quill's force below (N); one dash
+    style per case."""
     t = np.asarray(t)
     idx = decimate(len(t), target)
-    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
-                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
-    colours = [PALETTE["reference"], TERM_COLOURS["payload"], PALETTE["inverse"], PALETTE["pseudoinverse"]]
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
     dashes = ["solid", "dash", "dot", "dashdot"]
     for c, (label, tau) in enumerate(torques.items()):
         tau = np.asarray(tau)
         for j in range(4):
-            fig.add_scatter(x=_f32(t[idx]), y=_f32(tau[idx, j]), mode="lines", name=label, legendgroup=label,
-                            showlegend=(j == 0), line=dict(color=colours[c % 4], dash=dashes[c % 4], width=1.6),
-                            row=j + 1, col=1)
-            fig.update_yaxes(title_text=JOINT_UNITS[j], row=j + 1, col=1)
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    fig.update_layout(**base_layout(title, 820))
-    _legend_below(fig, 820)
+            fig.add_scatter(x=_f32(t[idx]), y=_f32(tau[idx, j]), mode="lines", name=f"τ{j + 1}, {label}",
+                            legendgroup=label, line=dict(color=JOINT_COLOURS[j], dash=dashes[c % 4], width=1.6),
+                            row=2 if j == 2 else 1, col=1)
+    fig.update_yaxes(title_text="τ1, τ2, τ4 (N m)", row=1, col=1)
+    fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
     return fig
 
 
 def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
-                          title: str = "Torque along the reference as the payload grows") -> go.Figure:
+                          title: str = "Joint torques (inverse dynamics)", height: int = 560,
+                          baseline: float | None = None, active: int | None = None) -> go.Figure:
     """Static slider figure: ``torques_by_mass`` maps payload masses (kg) to (N, 4) torque series; one slider
-    step per mass restyles the four traces (one row per joint). Works in the HTML with no kernel."""
+    step per mass restyles the four torque traces (revolute joints 1, 2, 4 on top in N m, the quill's force
+    below in N) and the title. The torques of the ``baseline`` mass (default: the first) stay drawn as thin
+    grey lines for comparison. ``active`` is the index of the mass shown first (default 0). Works in the HTML
+    with no kernel."""
     if not torques_by_mass:
         raise ScaraError("torques_by_mass is empty: give at least one payload mass")
     t = np.asarray(t)
     idx = decimate(len(t), target)
     masses = list(torques_by_mass)
-    first = np.asarray(torques_by_mass[masses[0]])
-    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.05,
-                        subplot_titles=[f"{n} ({u})" for n, u in zip(_JOINT_NAMES, JOINT_UNITS)])
+    active = 0 if active is None else int(active)
+    if not 0 <= active < len(masses):
+        raise ScaraError(f"active = {active} is not the index of one of the {len(masses)} payload masses")
+    base_m = masses[0] if baseline is None else baseline
+    if base_m not in torques_by_mass:
+        raise ScaraError(f"baseline = {base_m!r} kg is not one of the payload masses {masses}")
+    shown = np.asarray(torques_by_mass[masses[active]])
+    base = np.asarray(torques_by_mass[base_m])
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
     for j in range(4):
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(first[idx, j]), mode="lines",
-                        name=f"τ{j + 1}, inverse dynamics",
-                        line=dict(color=JOINT_COLOURS[j], width=1.6), row=j + 1, col=1)
-        lo = min(float(np.min(np.asarray(v)[:, j])) for v in torques_by_mass.values())
-        hi = max(float(np.max(np.asarray(v)[:, j])) for v in torques_by_mass.values())
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(shown[idx, j]), mode="lines", name=f"τ{j + 1}",
+                        line=dict(color=JOINT_COLOURS[j], width=2.0, dash=DASHES[j]), row=2 if j == 2 else 1, col=1)
+    for j in range(4):
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(base[idx, j]), mode="lines", name=f"τ with {base_m:g} kg (grey)",
+                        legendgroup="baseline", showlegend=(j == 0), hoverinfo="skip",
+                        line=dict(color="#999999", width=1.0), row=2 if j == 2 else 1, col=1)
+    for row, joints in ((1, (0, 1, 3)), (2, (2,))):
+        lo = min(float(np.min(np.asarray(v)[:, joints])) for v in torques_by_mass.values())
+        hi = max(float(np.max(np.asarray(v)[:, joints])) for v in torques_by_mass.values())
         pad = 0.05 * (hi - lo) + 1e-6
-        fig.update_yaxes(title_text=JOINT_UNITS[j], range=[lo - pad, hi + pad], row=j + 1, col=1)
+        fig.update_yaxes(range=[lo - pad, hi + pad], row=row, col=1)
+    fig.update_yaxes(title_text="τ1, τ2, τ4 (N m)", row=1, col=1)
+    fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
+
+    def heading(m, tau):
+        return f"{title}, payload {m:g} kg<br>largest |τ3| {np.abs(tau[:, 2]).max():.1f} N"
+
     steps = []
     for m in masses:
         tau = np.asarray(torques_by_mass[m])
-        steps.append(dict(label=f"{m:g}", method="restyle",
-                          args=[{"y": [[float(f"{v:.4g}") for v in tau[idx, j]] for j in range(4)]}, [0, 1, 2, 3]]))
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    fig.update_layout(**base_layout(title, 960), sliders=[slider(steps, "payload m_L (kg): ", pad_top=60)])
-    fig.update_layout(legend=dict(orientation="h", yanchor="top", y=-0.2, xanchor="left", x=0),
-                      margin=dict(l=60, r=20, t=60, b=190))
+        steps.append(dict(label=f"{m:g}", method="update",
+                          args=[{"y": [[float(f"{v:.4g}") for v in tau[idx, j]] for j in range(4)]},
+                                {"title.text": heading(m, tau)}, [0, 1, 2, 3]]))
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    fig.update_layout(**_fit_layout(heading(masses[active], shown), height, legend_rows=2),
+                      sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
+    fig.update_layout(margin=dict(b=130))
     return fig
 
 
-def energy_figure(t, energy: dict, title: str = "Energy of the arm released from rest", target: int = 1000) -> go.Figure:
+def energy_figure(t, energy: dict, title: str = "Energy of the released arm", target: int = 1000,
+                  height: int = 540) -> go.Figure:
     """Top: kinetic energy, potential energy and total energy (relative to their start values), the work
     dissipated by friction and the work done by the torques; bottom: the balance residual
     ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`."""
     t = np.asarray(t)
     idx = decimate(len(t), target)
-    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.72, 0.28], vertical_spacing=0.08,
-                        subplot_titles=["energies (J), each relative to its value at t = 0",
-                                        "balance residual E − E(0) − W_in + W_f (J)"])
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.7, 0.3], vertical_spacing=0.1)
     T, U, E = (np.asarray(energy[k]) for k in ("kinetic", "potential", "total"))
     series = [("kinetic energy T", T - T[0], "#0072B2", "solid"),
               ("potential energy U − U(0)", U - U[0], "#009E73", "dash"),
@@ -165,14 +199,15 @@ def energy_figure(t, energy: dict, title: str = "Energy of the arm released from
     if np.abs(energy["input_work"]).max() > 0:
         series.append(("input work W_in", np.asarray(energy["input_work"]), "#CC79A7", "dashdot"))
     for name, y, c, d in series:
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=2), row=1, col=1)
-    fig.add_scatter(x=_f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines", name="balance residual",
-                    line=dict(color="#999999", width=1.5), row=2, col=1)
-    fig.update_yaxes(title_text="J", row=1, col=1)
-    fig.update_yaxes(title_text="J", exponentformat="e", row=2, col=1)
+        width = 3.2 if name.startswith("total") else 2
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=width),
+                        row=1, col=1)
+    fig.add_scatter(x=_f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines",
+                    name="balance residual E − E(0) − W_in + W_f", line=dict(color="#999999", width=1.5), row=2, col=1)
+    fig.update_yaxes(title_text="energy (J)", row=1, col=1)
+    fig.update_yaxes(title_text="residual (J)", exponentformat="e", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_layout(**base_layout(title, 640))
-    _legend_below(fig, 640)
+    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
     return fig
 
 

@@ -14,7 +14,7 @@ import plotly.graph_objects as go
 
 from ..errors import ScaraError, as_array, as_vector
 from ..kinematics import _params, ikine, jacobian, link_frames, pose
-from ._common import AXIS_COLOURS, PALETTE, base_layout, slider
+from ._common import AXIS_COLOURS, DASHES, PALETTE, base_layout, slider
 
 __all__ = [
     "FRAME_NAMES",
@@ -25,12 +25,17 @@ __all__ = [
     "top_view_arm",
     "inverse_kinematics_figure",
     "determinant_figure",
+    "finish_layout",
+    "legend_entries",
+    "legend_rows",
+    "PHONE_PLOT_WIDTH",
 ]
 
 #: names of the frames drawn by :func:`arm_figure`: the base frame, then the six of :func:`link_frames`
 FRAME_NAMES = ("b", "0", "1", "2", "3", "4", "e")
-#: one colour per elbow solution (+1: sin theta2 >= 0, -1: sin theta2 <= 0)
+#: one colour and dash per elbow solution (+1: sin theta2 >= 0, -1: sin theta2 <= 0), told apart in greyscale too
 ELBOW_COLOURS = {+1: "#0072B2", -1: "#E69F00"}
+ELBOW_DASHES = {+1: "solid", -1: "dash"}
 _JOINT_LABELS = ("θ1", "θ2", "d3", "θ4")
 _TRIAD_NAMES = ("x axes", "y axes", "z axes")
 
@@ -92,6 +97,81 @@ def _layout(title: str, height: int, legend_rows: int = 1, subplot_titles: bool 
     return lay
 
 
+#: plot-area width (px) left on a 360-px phone page between the axis margins (227 to 232 px measured in the built
+#: book); legends are sized for it
+PHONE_PLOT_WIDTH = 230
+_LAPTOP_PLOT_WIDTH = 620
+_TITLE_SIZE = 15
+_LEGEND_SIZE = 12
+
+
+def legend_entries(fig: go.Figure) -> list[str]:
+    """Names the legend of ``fig`` will list (traces with a name whose ``showlegend`` is not False; heat maps
+    and text-only traces only when asked)."""
+    names = []
+    for t in fig.data:
+        if not t.name or t.showlegend is False:
+            continue
+        if t.type in ("heatmap", "contour", "surface") and t.showlegend is not True:
+            continue
+        if getattr(t, "mode", None) == "text" and t.showlegend is not True:
+            continue
+        names.append(t.name)
+    return names
+
+
+def _text_width(text: str, font_size: float = _LEGEND_SIZE) -> float:
+    """Width (px) of ``text`` in plotly's default sans-serif font, from widths measured in Chromium at 12 px
+    (an estimate that is never short by more than a pixel and long by at most 9 px on the book's legends)."""
+    w = 0.0
+    for ch in text:
+        if ch in "mwMW":
+            w += 9.4
+        elif ch in "ijlI|.,:;!'":
+            w += 3.2
+        elif ch in "frt()[]- ":
+            w += 4.2
+        elif ch.isupper() or ch.isdigit():
+            w += 7.0
+        else:
+            w += 6.4
+    return w * font_size / 12
+
+
+def legend_rows(names, plot_width: float = PHONE_PLOT_WIDTH, font_size: float = _LEGEND_SIZE) -> int:
+    """Rows a horizontal plotly legend with entries ``names`` takes in a plot area ``plot_width`` px wide.
+
+    Plotly packs the entries in one row when they fit, else in equal columns as wide as the widest entry
+    (seen in Chromium); an entry is 44 px of symbol and padding plus its text."""
+    if not names:
+        return 0
+    widths = [44 + _text_width(n, font_size) for n in names]
+    if sum(widths) <= plot_width:
+        return 1
+    per_row = max(1, int(plot_width // max(widths)))
+    return -(-len(names) // per_row)
+
+
+def finish_layout(fig: go.Figure, title: str | None, height: int, subplot_titles: bool = False, **kw) -> go.Figure:
+    """Apply the book's layout to a finished ``fig``: a short title (lines split with ``<br>``) at the top, the
+    legend under it, and room reserved for the legend as it wraps on a phone-width page, so that neither the
+    title, the legend nor the plot overlap at any width. Returns ``fig``."""
+    lines = 0 if not title else title.count("<br>") + 1
+    rows = legend_rows(legend_entries(fig))
+    title_px = 22 * lines
+    top = 14 + title_px + 21 * rows + (26 if subplot_titles else 8)
+    lay = base_layout(None, height, **kw)
+    if title:
+        lay["title"] = dict(text=title, x=0.0, xanchor="left", y=1.0 - 10 / height, yanchor="top", yref="container",
+                            font=dict(size=_TITLE_SIZE), pad=dict(l=8))
+    lay["legend"] = dict(orientation="h", xanchor="left", x=0.0, yref="container", yanchor="top",
+                         y=1.0 - (12 + title_px) / height, font=dict(size=_LEGEND_SIZE))
+    lay["margin"] = dict(lay["margin"], t=top)
+    lay["showlegend"] = rows > 0
+    fig.update_layout(**lay)
+    return fig
+
+
 def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
     g = arm_geometry(q, p, triad)
     colour = colour or PALETTE["arm"]
@@ -108,7 +188,7 @@ def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
         for k in range(3):
             s = g["triads"][k]
             traces.append(go.Scatter3d(x=_as_list(s[:, 0]), y=_as_list(s[:, 1]), z=_as_list(s[:, 2]), mode="lines",
-                                       name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5),
+                                       name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5, dash=DASHES[k]),
                                        hoverinfo="skip"))
         o = g["origins"]
         traces.append(go.Scatter3d(x=_as_list(o[:, 0] + 0.03), y=_as_list(o[:, 1] + 0.03), z=_as_list(o[:, 2] + 0.04),
@@ -129,17 +209,18 @@ def _scene(p):
     )
 
 
-def _pose_text(q, p):
+def _pose_text(q, p, head: str = ""):
+    """Two title lines (each short enough for a phone-width page): the position, then phi and det J_A."""
     x = pose(q, p)
-    det = float(np.linalg.det(jacobian(q, p)))
-    return (f"x_e = [{x[0]:.3f} m, {x[1]:.3f} m, {x[2]:.3f} m, {math.degrees(x[3]):.1f}°], "
-            f"det J_A = {det:.3f} m²")
+    det = float(np.linalg.det(jacobian(q, p))) + 0.0
+    return (f"{head}p = ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m<br>"
+            f"φ = {math.degrees(x[3]):.1f}°, det J_A = {det:.3f} m²")
 
 
 def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str | None = None,
-               height: int = 520) -> go.Figure:
+               height: int = 500) -> go.Figure:
     """3-D view of the arm at ``q`` with the triads of its DH frames (x, y, z axes coloured as
-    ``AXIS_COLOURS``), frame names, and the end-effector position.
+    ``AXIS_COLOURS`` and dashed as ``DASHES``), frame names, and the end-effector position.
 
     ``q`` (4,) in rad, rad, m, rad. The title states ``x_e`` (SPEC section 2) and ``det J_A``.
 
@@ -150,13 +231,11 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str |
     p = _params(p)
     q = as_vector(q, "q")
     fig = go.Figure(_arm_traces(q, p, triad, frames=frames))
-    fig.update_layout(**_layout(title or f"The arm and its frames<br>{_pose_text(q, p)}", height),
-                      scene=_scene(p), uirevision="arm")
-    return fig
+    return finish_layout(fig, title or _pose_text(q, p), height, scene=_scene(p), uirevision="arm")
 
 
 def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: float = 0.15,
-                        height: int = 560) -> go.Figure:
+                        height: int = 540) -> go.Figure:
     """Static (kernel-free) figure: the arm of :func:`arm_figure` with one slider sweeping joint ``joint``
     (0-based: 0 = theta1, 1 = theta2, 2 = d3, 3 = theta4) over ``values``, the other joints held at ``q0``.
 
@@ -196,25 +275,23 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
             label=label, method="update",
             args=[{"x": [t.x for t in tr], "y": [t.y for t in tr], "z": [t.z for t in tr],
                    "text": [t.text for t in tr]},
-                  {"title.text": f"{_JOINT_LABELS[joint]} = {label}{sep}{unit}<br>{_pose_text(q, p)}"},
+                  {"title.text": _pose_text(q, p, f"{_JOINT_LABELS[joint]} = {label}{sep}{unit}: ")},
                   list(range(len(tr)))]))
     name = _JOINT_LABELS[joint]
-    fig.update_layout(
-        **_layout(f"{name} = {steps[active]['label']}{sep}{unit}<br>{_pose_text(qs[active], p)}", height),
-        scene=_scene(p), uirevision="arm",
-        sliders=[slider(steps, prefix=f"{name} ({unit}) = ", active=active)],
-    )
-    return fig
+    return finish_layout(fig, _pose_text(qs[active], p, f"{name} = {steps[active]['label']}{sep}{unit}: "), height,
+                         scene=_scene(p), uirevision="arm",
+                         sliders=[slider(steps, prefix=f"{name} ({unit}) = ", active=active)])
 
 
-def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0) -> go.Scatter:
+def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0,
+                 dash: str = "solid") -> go.Scatter:
     """The arm at ``q`` seen from above (base x-y plane) as one 2-D line trace: base axis, elbow, end effector."""
     p = _params(p)
     origins = link_frames(q, p)[:, :3, 3]
     pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
     colour = colour or PALETTE["arm"]
     return go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="lines+markers", name=name,
-                      line=dict(color=colour, width=width), marker=dict(size=[9, 7, 7], color=colour),
+                      line=dict(color=colour, width=width, dash=dash), marker=dict(size=[9, 7, 7], color=colour),
                       opacity=opacity, showlegend=showlegend,
                       hovertemplate="(%{x:.3f}, %{y:.3f}) m<extra>" + name + "</extra>")
 
@@ -231,39 +308,39 @@ def _planar_axes(fig, p, margin=0.15):
     fig.update_yaxes(title_text="y (m)", range=[-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
 
 
-def inverse_kinematics_figure(x, p=None, height: int = 520) -> go.Figure:
+def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
     """Top view of both closed-form inverse-kinematics solutions (elbow +1 and -1) reaching the target ``x``.
 
     ``x = [p_x, p_y, p_z, phi]`` (m, m, m, rad). Draws the workspace boundary circles ``r = a1 + a2`` and
-    ``r = |a1 - a2|``, both arms and the target. Raises :class:`UnreachableError` (from :func:`ikine`) when
-    the target is outside the workspace.
+    ``r = |a1 - a2|``, both arms (elbow +1 solid, elbow -1 dashed) and the target; the title gives theta2 of
+    each. Raises :class:`UnreachableError` (from :func:`ikine`) when the target is outside the workspace.
 
     >>> fig = inverse_kinematics_figure([0.18, 0.20, 0.5, 0.0])
     >>> [t.name for t in fig.data][1]
-    'elbow +1 (θ2 = 148.8°)'
+    'elbow +1'
     """
     p = _params(p)
     x = as_vector(x, "x")
     fig = go.Figure()
     cx, cy = _circle(p.r_max)
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"r = a1 + a2 = {p.r_max:g} m",
+    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"reach {p.r_max:g} m",
                              line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip"))
     if p.r_min > 0:
         cx, cy = _circle(p.r_min)
         fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines",
-                                 name=f"r = |a1 - a2| = {p.r_min:g} m",
+                                 name=f"hole {p.r_min:g} m",
                                  line=dict(color="#999999", dash="dot", width=1), hoverinfo="skip"))
     parts = []
     for elbow in (+1, -1):
         q = ikine(x, p, elbow=elbow)
         sign = "+" if elbow > 0 else "−"
-        fig.add_trace(top_view_arm(q, p, colour=ELBOW_COLOURS[elbow], name=f"elbow {sign}1 (θ2 = {math.degrees(q[1]):.1f}°)"))
-        parts.append(f"θ2 = {math.degrees(q[1]):.1f}°")
+        fig.add_trace(top_view_arm(q, p, colour=ELBOW_COLOURS[elbow], name=f"elbow {sign}1", dash=ELBOW_DASHES[elbow]))
+        parts.append(f"θ2 = {math.degrees(q[1]):.1f}°".replace("-", "−"))
     fig.add_trace(go.Scatter(x=[x[0]], y=[x[1]], mode="markers", name="target",
                              marker=dict(symbol="x", size=13, color=PALETTE["reference"]),
                              hovertemplate="target (%{x:.3f}, %{y:.3f}) m<extra></extra>"))
-    fig.update_layout(**_layout(
-        f"Both elbows reach p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, d3 = {p.d0 - x[2]:.2f} m", height))
+    finish_layout(fig, f"p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, d3 = {p.d0 - x[2]:.2f} m<br>"
+                       f"{parts[0]} (elbow +1), {parts[1][5:]} (elbow −1)", height)
     _planar_axes(fig, p)
     return fig
 
@@ -278,14 +355,14 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     t2 = np.linspace(-180.0, 180.0, int(n))
     det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(det, 5), mode="lines", name="det J_A (numerical)",
+    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(det, 5), mode="lines", name="det J_A",
                              line=dict(color=AXIS_COLOURS[0], width=3)))
     fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(np.abs(det), 5), mode="lines",
                              name="w = |det J_A|", line=dict(color=AXIS_COLOURS[1], dash="dash", width=2)))
-    fig.add_trace(go.Scatter(x=[-180, 0, 180], y=[0, 0, 0], mode="markers+text", name="singular (det J_A = 0)",
+    fig.add_trace(go.Scatter(x=[-180, 0, 180], y=[0, 0, 0], mode="markers+text", name="singular",
                              text=["folded", "stretched", "folded"], textposition="top center",
                              marker=dict(size=11, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))))
-    fig.update_layout(**_layout("The Jacobian determinant against θ2 (θ1, d3, θ4 do not matter)", height))
-    fig.update_xaxes(title_text="θ2 (deg)", tickvals=list(range(-180, 181, 45)))
+    finish_layout(fig, "det J_A against θ2 (θ1, d3, θ4 held)", height)
+    fig.update_xaxes(title_text="θ2 (°)", tickvals=list(range(-180, 181, 90)))
     fig.update_yaxes(title_text="det J_A (m²)")
     return fig

@@ -16,13 +16,12 @@ import math
 
 import numpy as np
 import plotly.graph_objects as go
-from plotly.subplots import make_subplots
 
 from ..errors import ScaraError, as_array, as_vector, check_positive
 from ..kinematics import _params, ikine
 from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, slider
-from .kinematics import _as_list, _circle, _layout, top_view_arm
+from .kinematics import _as_list, _circle, _layout, finish_layout, top_view_arm
 
 __all__ = [
     "REFERENCE_CONFIGURATIONS",
@@ -45,6 +44,8 @@ REFERENCE_CONFIGURATIONS = {
     "q5": (0.0, -99.99 * math.pi / 100, 0.5, 0.0),
 }
 _CLIP = 50.0  # m: drawn semi-axes are capped here (the view is about 2.5 m wide)
+#: line style per ellipse kind: velocity solid, force dashed (told apart in greyscale)
+_DASH = {"velocity": "solid", "force": "dash"}
 
 
 def ellipse_xy(ellipsoid, scale: float = 1.0, n: int = 181) -> np.ndarray:
@@ -63,11 +64,13 @@ def ellipse_xy(ellipsoid, scale: float = 1.0, n: int = 181) -> np.ndarray:
 def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float | None = None, arm: bool = True,
                    showlegend: bool = True, axes: bool = False, n: int = 181) -> list:
     """2-D traces (top view) of the arm at ``q`` with its horizontal velocity and force ellipses centred at
-    the end effector; with ``axes`` also their principal axes as segments.
+    the end effector; with ``axes`` also their principal axes as segments (not in the legend).
 
     ``velocity_scale`` is in metres drawn per m/s (semi-axis ``sigma_i`` for a unit joint-velocity norm),
     ``force_scale`` in metres drawn per N (semi-axis ``1/sigma_i`` for a unit torque norm), by default the
-    same number. Returns a list of ``go.Scatter``.
+    same number. The velocity ellipse is solid (``PALETTE["velocity"]``), the force ellipse dashed
+    (``PALETTE["force"]``), so the two differ in greyscale too. Returns a list of ``go.Scatter``: the arm (if
+    ``arm``), the velocity ellipse, [its axes], the force ellipse, [its axes].
     """
     p = _params(p)
     q = as_vector(q, "q")
@@ -77,12 +80,11 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
     traces = []
     if arm:
         traces.append(top_view_arm(q, p, showlegend=showlegend))
-    for ell, sc, key, label in ((vel, velocity_scale, "velocity", "velocity ellipse"),
-                                (frc, force_scale, "force", "force ellipse")):
+    for ell, sc, key in ((vel, velocity_scale, "velocity"), (frc, force_scale, "force")):
         xy = ellipse_xy(ell, sc, n)
         traces.append(go.Scatter(x=_as_list(xy[:, 0]), y=_as_list(xy[:, 1]), mode="lines",
-                                 name=f"{label} (× {sc:g})", legendgroup=key, showlegend=showlegend,
-                                 line=dict(color=PALETTE[key], width=2.5, dash="solid" if key == "velocity" else "dash"),
+                                 name=f"{key} ellipse", legendgroup=key, showlegend=showlegend,
+                                 line=dict(color=PALETTE[key], width=2.5, dash=_DASH[key]),
                                  hoverinfo="skip"))
         if axes:
             seg = []
@@ -108,100 +110,125 @@ def workspace_points(radii=(0.3, 0.55, 0.8), n_angles: int = 8, height: float = 
     return np.array(pts)
 
 
-def _top_axes(fig, p, rows_cols, margin=0.2, xr=None, yr=None):
+def _top_axes(fig, p, margin=0.2, xr=None, yr=None):
+    """Equal-scale x-y axes (m) of a top view, by default covering the workspace disc."""
     reach = p.r_max + margin
-    xr = xr or [-reach, reach]
-    yr = yr or [-reach, reach]
-    for k, (r, c) in enumerate(rows_cols):
-        fig.update_xaxes(title_text="x (m)", range=xr, zeroline=False, constrain="domain", row=r, col=c)
-        anchor = "x" if k == 0 else f"x{k + 1}"
-        fig.update_yaxes(title_text="y (m)", range=yr, zeroline=False, scaleanchor=anchor, scaleratio=1,
-                         row=r, col=c)
+    fig.update_xaxes(title_text="x (m)", range=xr or [-reach, reach], zeroline=False, constrain="domain")
+    fig.update_yaxes(title_text="y (m)", range=yr or [-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
+
+
+def _boundary_trace(p, name="workspace boundary", showlegend=False):
+    """The reach ``r = a1 + a2`` as a thin grey dashed circle (named in the captions, kept out of the legend so
+    that the legend stays short at phone width)."""
+    cx, cy = _circle(p.r_max)
+    return go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=name, showlegend=showlegend,
+                      line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip")
+
+
+def _inv(s):
+    return "∞" if s < 1e-12 else (f"{1.0 / s:.3g}" if 1.0 / s < 1e4 else f"{1.0 / s:.1e}")
+
+
+def _axes_text(q, p):
+    s = velocity_ellipsoid(q, p, rows=(0, 1)).lengths
+    return f"σ: {s[0]:.3f}, {s[1]:.3f} m/s; 1/σ: {_inv(s[0])}, {_inv(s[1])} N"
 
 
 def reference_ellipses_figure(configurations: dict | None = None, p=None, velocity_scale: float = 0.15,
-                              force_scale: float | None = None, height: int = 640) -> go.Figure:
-    """Velocity and force ellipses on the arm (top view) at named configurations, one panel each (up to 6),
-    by default the five reference configurations of SPEC section 2; each panel's title gives ``w``
-    (:func:`scara.manipulability`). ``configurations`` maps a label to a joint vector (4,).
+                              force_scale: float | None = None, height: int = 560) -> go.Figure:
+    """Static (kernel-free) figure: the arm (top view) with its velocity and force ellipses and their principal
+    axes at named configurations, one slider step each, by default the five reference configurations of SPEC
+    section 2. Each step retitles the figure with ``theta2``, ``w`` (:func:`scara.manipulability`) and the
+    semi-axes. ``configurations`` maps a label to a joint vector (4,); between 2 and 25 of them, else
+    :class:`ScaraError`.
 
     >>> fig = reference_ellipses_figure()
-    >>> fig.layout.annotations[0].text
-    'q1: θ2 = -90.00°, w = 0.250 m²'
+    >>> [s.label for s in fig.layout.sliders[0].steps]
+    ['q1', 'q2', 'q3', 'q4', 'q5']
     """
     p = _params(p)
     configurations = dict(REFERENCE_CONFIGURATIONS if configurations is None else configurations)
-    if not 1 <= len(configurations) <= 6:
-        raise ScaraError(f"{len(configurations)} configurations: give between 1 and 6")
-    titles = []
-    for name, q in configurations.items():
-        q = as_vector(q, f"configuration {name}")
-        titles.append(f"{name}: θ2 = {math.degrees(q[1]):.2f}°, w = {manipulability(q, p):.3f} m²")
-    ncol = 3 if len(configurations) > 2 else len(configurations)
-    nrow = math.ceil(len(configurations) / ncol)
-    fig = make_subplots(rows=nrow, cols=ncol, subplot_titles=titles, horizontal_spacing=0.06, vertical_spacing=0.14)
-    cells = []
-    for k, q in enumerate(configurations.values()):
-        r, c = divmod(k, ncol)
-        cells.append((r + 1, c + 1))
-        for t in ellipse_traces(q, p, velocity_scale, force_scale, showlegend=(k == 0)):
-            fig.add_trace(t, row=r + 1, col=c + 1)
-    fig.update_layout(**_layout("Velocity and force ellipses at the reference configurations (top view)", height,
-                                subplot_titles=True))
-    fig.update_annotations(font_size=12)
-    _top_axes(fig, p, cells, xr=[-0.5, p.r_max + 0.5], yr=[-0.95, 1.05])
+    if not 2 <= len(configurations) <= 25:
+        raise ScaraError(f"{len(configurations)} configurations: give between 2 and 25")
+    qs = {name: as_vector(q, f"configuration {name}") for name, q in configurations.items()}
+
+    def title(name, q):
+        return (f"{name}: θ2 = {math.degrees(q[1]):.2f}°, w = {manipulability(q, p):.3f} m²<br>"
+                f"{_axes_text(q, p)}")
+
+    first = next(iter(qs))
+    traces = ellipse_traces(qs[first], p, velocity_scale, force_scale, axes=True)
+    fig = go.Figure(traces)
+    fig.add_trace(_boundary_trace(p))
+    steps = []
+    for name, q in qs.items():
+        tr = ellipse_traces(q, p, velocity_scale, force_scale, axes=True)
+        steps.append(dict(label=name, method="update",
+                          args=[{"x": [t.x for t in tr], "y": [t.y for t in tr]}, {"title.text": title(name, q)},
+                                list(range(len(tr)))]))
+    finish_layout(fig, title(first, qs[first]), height, sliders=[slider(steps, prefix="configuration ")])
+    _top_axes(fig, p, xr=[-0.55, 1.55], yr=[-1.0, 1.0])
     return fig
 
 
 def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_scale: float = 0.1,
                               force_scale: float = 0.03, height: int = 560) -> go.Figure:
-    """Velocity (left) and force (right) ellipses at many end-effector positions over the workspace, each on
-    its arm (elbow ``elbow``), top view. ``points`` (N, 4) targets ``[p_x, p_y, p_z, phi]``, by default
-    :func:`workspace_points` (24 positions). Raises :class:`UnreachableError` for a target outside the
-    workspace."""
+    """Static (kernel-free) figure: the arms (elbow ``elbow``, top view) reaching many end-effector positions
+    over the workspace, with a two-step slider that shows their velocity ellipses (first step) or their force
+    ellipses. ``points`` (N, 4) targets ``[p_x, p_y, p_z, phi]``, by default :func:`workspace_points`
+    (24 positions). Raises :class:`UnreachableError` for a target outside the workspace.
+
+    Trace 1 holds the ellipses of the step shown (named ``"velocity ellipses"`` or ``"force ellipses"``).
+    """
     p = _params(p)
     pts = workspace_points() if points is None else as_array(points, "points", (4,), allow_batch=True)
     pts = np.atleast_2d(pts)
     qs = np.atleast_2d(ikine(pts, p, elbow=elbow))
-    fig = make_subplots(rows=1, cols=2, horizontal_spacing=0.08,
-                        subplot_titles=[f"velocity ellipses (× {velocity_scale:g})", f"force ellipses (× {force_scale:g})"])
-    arms = []
+    ax, ay = [], []
     for q in qs:
         t = top_view_arm(q, p)
-        arms += list(t.x) + [None], list(t.y) + [None]
-    ax = [v for i in range(0, len(arms), 2) for v in arms[i]]
-    ay = [v for i in range(1, len(arms), 2) for v in arms[i]]
-    for col, key, sc in ((1, "velocity", velocity_scale), (2, "force", force_scale)):
-        fig.add_trace(go.Scatter(x=ax, y=ay, mode="lines", name=f"arms (elbow {elbow:+d})", legendgroup="arm",
-                                 showlegend=(col == 1), line=dict(color="#BBBBBB", width=1.5), hoverinfo="skip"),
-                      row=1, col=col)
+        ax += list(t.x) + [None]
+        ay += list(t.y) + [None]
+    outlines = {}
+    for key, sc in (("velocity", velocity_scale), ("force", force_scale)):
         xs, ys = [], []
         for q in qs:
             ell = (velocity_ellipsoid if key == "velocity" else force_ellipsoid)(q, p, rows=(0, 1))
             xy = ellipse_xy(ell, sc, n=61)
             xs += _as_list(xy[:, 0]) + [None]
             ys += _as_list(xy[:, 1]) + [None]
-        fig.add_trace(go.Scatter(x=xs, y=ys, mode="lines", name=f"{key} ellipses", line=dict(color=PALETTE[key], width=2),
-                                 hoverinfo="skip"), row=1, col=col)
-        fig.add_trace(go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="markers", name="end effector",
-                                 legendgroup="ee", showlegend=(col == 1),
-                                 marker=dict(size=4, color=PALETTE["reference"]),
-                                 hovertemplate="(%{x:.2f}, %{y:.2f}) m<extra></extra>"), row=1, col=col)
-        cx, cy = _circle(p.r_max)
-        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name="workspace boundary",
-                                 legendgroup="ws", showlegend=(col == 1),
-                                 line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip"), row=1, col=col)
-    fig.update_layout(**_layout(f"Ellipses at {len(pts)} end-effector positions over the workspace", height,
-                                subplot_titles=True))
-    _top_axes(fig, p, [(1, 1), (1, 2)], margin=0.15)
+        outlines[key] = (xs, ys, sc)
+    fig = go.Figure()
+    fig.add_trace(go.Scatter(x=ax, y=ay, mode="lines", name=f"arms (elbow {elbow:+d})",
+                             line=dict(color="#BBBBBB", width=1.5), hoverinfo="skip"))
+    xs, ys, sc = outlines["velocity"]
+    fig.add_trace(go.Scatter(x=xs, y=ys, mode="lines", name="velocity ellipses", hoverinfo="skip",
+                             line=dict(color=PALETTE["velocity"], width=2, dash=_DASH["velocity"])))
+    fig.add_trace(go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="markers", name="end effector",
+                             marker=dict(size=4, color=PALETTE["reference"]),
+                             hovertemplate="(%{x:.2f}, %{y:.2f}) m<extra></extra>"))
+    fig.add_trace(_boundary_trace(p))
+
+    def title(key, sc):
+        unit = "m/s" if key == "velocity" else "N"
+        return f"{key.capitalize()} ellipses at {len(pts)} positions<br>(drawn at {sc:g} m per {unit})"
+
+    steps = []
+    for key in ("velocity", "force"):
+        xs, ys, sc = outlines[key]
+        steps.append(dict(label=key, method="update", args=[
+            {"x": [xs], "y": [ys], "name": [f"{key} ellipses"], "line.color": [PALETTE[key]],
+             "line.dash": [_DASH[key]]}, {"title.text": title(key, sc)}, [1]]))
+    finish_layout(fig, title("velocity", velocity_scale), height, sliders=[slider(steps, prefix="ellipses: ")])
+    _top_axes(fig, p, margin=0.15)
     return fig
 
 
-def manipulability_map_figure(p=None, n: int = 101, height: int = 560) -> go.Figure:
+def manipulability_map_figure(p=None, n: int = 101, height: int = 520) -> go.Figure:
     """Heat map of ``w`` (m²) over the horizontal workspace (:func:`scara.workspace_map`), with the circles
     where ``w = 0`` (stretched ``r = a1 + a2``; folded ``r = |a1 - a2|``, a single point when ``a1 = a2``)
     and the circle of largest ``w`` (``theta2 = ±90°``, ``r = sqrt(a1² + a2²)``). ``n`` grid points per side
-    (>= 3, else :class:`ScaraError`).
+    (>= 3, else :class:`ScaraError`). Viridis runs from dark to light, so the map reads in greyscale.
 
     >>> fig = manipulability_map_figure(n=41)
     >>> fig.data[0].type
@@ -212,66 +239,61 @@ def manipulability_map_figure(p=None, n: int = 101, height: int = 560) -> go.Fig
     r_in, r_out = singular_radii(p)
     fig = go.Figure()
     fig.add_trace(go.Heatmap(x=_as_list(xs), y=_as_list(ys), z=[_as_list(row) for row in W], colorscale="Viridis",
-                             zmin=0.0, zmax=p.a1 * p.a2, name="w", colorbar=dict(title=dict(text="w (m²)")),
+                             zmin=0.0, zmax=p.a1 * p.a2, name="w",
+                             colorbar=dict(title=dict(text="w (m²)", side="right"), thickness=14),
                              hovertemplate="x = %{x:.2f} m, y = %{y:.2f} m<br>w = %{z:.3f} m²<extra></extra>"))
     cx, cy = _circle(r_out)
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"stretched, w = 0 (r = {r_out:g} m)",
-                             line=dict(color="#D55E00", width=3), hoverinfo="skip"))
+    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"stretched: w = 0, r = {r_out:g} m",
+                             line=dict(color=PALETTE["force"], width=3), hoverinfo="skip"))
     if r_in > 1e-9:
         cx, cy = _circle(r_in)
-        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"folded, w = 0 (r = {r_in:g} m)",
-                                 line=dict(color="#CC79A7", width=3), hoverinfo="skip"))
+        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"folded: w = 0, r = {r_in:g} m",
+                                 line=dict(color="#CC79A7", width=3, dash="dash"), hoverinfo="skip"))
     else:
-        fig.add_trace(go.Scatter(x=[0.0], y=[0.0], mode="markers", name="folded, w = 0 (r = 0: the joint-1 axis)",
+        fig.add_trace(go.Scatter(x=[0.0], y=[0.0], mode="markers", name="folded: w = 0, r = 0",
                                  marker=dict(color="#CC79A7", size=12, symbol="circle-open", line=dict(width=3))))
     cx, cy = _circle(math.hypot(p.a1, p.a2))
     fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines",
-                             name=f"largest w = a1 a2 (r = {math.hypot(p.a1, p.a2):.3f} m)",
-                             line=dict(color="#FFFFFF", width=2, dash="dot"), hoverinfo="skip"))
-    fig.update_layout(**_layout("Manipulability w over the workspace (top view)", height, legend_rows=2))
+                             name=f"largest w: r = {math.hypot(p.a1, p.a2):.3f} m",
+                             line=dict(color=PALETTE["reference"], width=2, dash="dot"), hoverinfo="skip"))
+    finish_layout(fig, "Manipulability w over the workspace", height)
     reach = r_out + 0.1
     fig.update_xaxes(title_text="x (m)", range=[-reach, reach], constrain="domain")
     fig.update_yaxes(title_text="y (m)", range=[-reach, reach], scaleanchor="x", scaleratio=1)
     return fig
 
 
-def duality_figure(q, p=None, scale: float = 0.15, n: int = 181, height: int = 480) -> go.Figure:
-    """The two ellipses are dual. Left: velocity and force ellipses at ``q`` with their principal axes (same
-    directions). Right: their semi-axis lengths ``sigma_1, sigma_2`` and ``1/sigma_1, 1/sigma_2`` against
-    ``theta2`` on a log scale (mirror images: each product is 1), with ``q`` marked."""
+def duality_figure(q, p=None, n: int = 181, height: int = 440) -> go.Figure:
+    """The two ellipses are dual: the semi-axis lengths ``sigma_1, sigma_2`` of the velocity ellipse and
+    ``1/sigma_1, 1/sigma_2`` of the force ellipse against ``theta2`` (degrees, the other joints as in ``q``)
+    on a log scale, mirror images of each other because each product is 1, with the values at ``q`` marked.
+    ``n`` samples of theta2 over [-179°, 179°] (>= 3, else :class:`ScaraError`)."""
     p = _params(p)
     q = as_vector(q, "q")
-    fig = make_subplots(rows=1, cols=2, column_widths=[0.45, 0.55], horizontal_spacing=0.1,
-                        subplot_titles=[f"at θ2 = {math.degrees(q[1]):.0f}°: same axes, reciprocal lengths",
-                                        "semi-axis lengths against θ2"])
-    for t in ellipse_traces(q, p, scale, scale, axes=True):
-        fig.add_trace(t, row=1, col=1)
+    if int(n) < 3:
+        raise ScaraError(f"n = {n} samples is too few (need >= 3)")
     t2 = np.linspace(-179.0, 179.0, int(n))
     sig = np.array([velocity_ellipsoid([q[0], math.radians(v), q[2], q[3]], p, rows=(0, 1)).lengths for v in t2])
-    styles = (("velocity", "σ1 (velocity, major)", "solid"), ("velocity", "σ2 (velocity, minor)", "dot"),
-              ("force", "1/σ1 (force, minor)", "solid"), ("force", "1/σ2 (force, major)", "dot"))
-    for k, (key, name, dash) in enumerate(styles):
+    fig = go.Figure()
+    styles = (("velocity", "σ1 (velocity)", "solid", 0, False), ("velocity", "σ2 (velocity)", "dash", 1, False),
+              ("force", "1/σ1 (force)", "dot", 0, True), ("force", "1/σ2 (force)", "dashdot", 1, True))
+    for key, name, dash, k, inverse in styles:
         with np.errstate(divide="ignore"):
-            y = sig[:, k % 2] if k < 2 else 1.0 / sig[:, k % 2]
+            y = 1.0 / sig[:, k] if inverse else sig[:, k]
         fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(y, 5), mode="lines", name=name, legendgroup=key,
-                                 line=dict(color=PALETTE[key], dash=dash, width=2)), row=1, col=2)
+                                 line=dict(color=PALETTE[key], dash=dash, width=2.5)))
     here = velocity_ellipsoid(q, p, rows=(0, 1)).lengths
-    fig.add_trace(go.Scatter(x=[math.degrees(q[1])] * 4, y=_as_list(np.concatenate([here, 1.0 / here]), 5),
-                             mode="markers", name="this configuration",
-                             marker=dict(size=9, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))),
-                  row=1, col=2)
-    fig.update_layout(**_layout("Duality of the velocity and force ellipses", height, legend_rows=2,
-                                subplot_titles=True))
-    reach = p.r_max + 0.2
-    fig.update_xaxes(title_text="x (m)", range=[-0.4, reach], constrain="domain", row=1, col=1)
-    fig.update_yaxes(title_text="y (m)", range=[-0.7, 0.7], scaleanchor="x", scaleratio=1, row=1, col=1)
-    fig.update_xaxes(title_text="θ2 (deg)", tickvals=list(range(-180, 181, 90)), row=1, col=2)
-    fig.update_yaxes(title_text="semi-axis length (m/s or N, log scale)", type="log", range=[-2, 2], row=1, col=2)
+    fig.add_trace(go.Scatter(x=[round(math.degrees(q[1]), 2)] * 4, y=_as_list(np.concatenate([here, 1.0 / here]), 5),
+                             mode="markers", name=f"θ2 = {math.degrees(q[1]):.0f}°",
+                             marker=dict(size=9, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))))
+    finish_layout(fig, "Semi-axes of the two ellipses against θ2", height)
+    fig.update_xaxes(title_text="θ2 (°)", tickvals=list(range(-180, 181, 90)))
+    fig.update_yaxes(title_text="semi-axis (m/s or N, log)", type="log", range=[-2, 2])
     return fig
 
 
 def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: float = 0.15,
-                          height: int = 600) -> go.Figure:
+                          height: int = 560) -> go.Figure:
     """Static (kernel-free) figure: the arm and its velocity and force ellipses (top view) with one slider
     sweeping ``theta2`` over ``theta2_deg`` (degrees; default 25 steps from 180° folded, through 0°
     stretched, to -180° folded the other way). Each step restyles the arm and both ellipses (traces 0-2) and
@@ -287,12 +309,11 @@ def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: f
                                                                                 (len(np.atleast_1d(theta2_deg)),))
     if not 2 <= len(vals) <= 61:
         raise ScaraError(f"{len(vals)} slider steps: use between 2 and 61 (pages stay light)")
+    check_positive(scale, "scale")
     qs = [np.array([theta1, math.radians(v), 0.5 * p.d0, 0.0]) for v in vals]
 
     def title(v, q):
-        s = velocity_ellipsoid(q, p, rows=(0, 1)).lengths
-        return (f"θ2 = {v:.0f}°: w = {manipulability(q, p):.3f} m²<br>velocity semi-axes σ = ({s[0]:.3f}, {s[1]:.3f}),"
-                f" force semi-axes 1/σ = ({_inv(s[0])}, {_inv(s[1])})")
+        return f"θ2 = {v:.0f}°: w = {manipulability(q, p):.3f} m²<br>{_axes_text(q, p)}"
 
     active = int(np.argmin(np.abs(vals - 90.0)))
     fig = go.Figure(ellipse_traces(qs[active], p, scale, scale, n=91))
@@ -302,16 +323,8 @@ def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: f
         steps.append(dict(label=f"{v:.0f}", method="update",
                           args=[{"x": [t.x for t in tr], "y": [t.y for t in tr]}, {"title.text": title(v, q)},
                                 list(range(len(tr)))]))
-    cx, cy = _circle(p.r_max)
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name="workspace boundary",
-                             line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip"))
-    fig.update_layout(**_layout(title(vals[active], qs[active]), height),
-                      sliders=[slider(steps, prefix="θ2 (°) = ", active=active)])
-    reach = p.r_max + 0.2
-    fig.update_xaxes(title_text="x (m)", range=[-reach, reach], constrain="domain")
-    fig.update_yaxes(title_text="y (m)", range=[-reach, reach], scaleanchor="x", scaleratio=1)
+    fig.add_trace(_boundary_trace(p))
+    finish_layout(fig, title(vals[active], qs[active]), height,
+                  sliders=[slider(steps, prefix="θ2 (°) = ", active=active)])
+    _top_axes(fig, p)
     return fig
-
-
-def _inv(s):
-    return "∞" if s < 1e-12 else (f"{1.0 / s:.3g}" if 1.0 / s < 1e4 else f"{1.0 / s:.1e}")

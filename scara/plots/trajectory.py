@@ -14,8 +14,8 @@ from plotly.subplots import make_subplots
 
 from ..errors import ScaraError
 from ..trajectory import Trajectory, Trapezoidal, plan_path
-from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, base_layout, slider
-from .kinematics import top_view_arm
+from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
+from .kinematics import finish_layout, top_view_arm
 
 __all__ = [
     "decimate",
@@ -31,12 +31,10 @@ __all__ = [
 _VIA_COLOUR = "#E69F00"
 _ARC_COLOUR = "#CC79A7"
 _COMP = ("x", "y", "z")
-
-
-def _layout(title, height, bottom=50, **kw):
-    """:func:`base_layout` with room above the plot for the title and a one-row legend under it."""
-    return base_layout(title, height, margin=dict(l=65, r=20, t=100, b=bottom),
-                       legend=dict(orientation="h", yanchor="bottom", y=1.01, xanchor="left", x=0), **kw)
+#: a plan that stops at a point, drawn against the reference (black, solid): grey and dashed
+_STOP_LINE = dict(color="#999999", dash="dash")
+#: the reference trajectory or the plan under the slider: black and solid, as the reference everywhere
+_VIA_LINE = dict(color=PALETTE["reference"], dash="solid")
 
 
 def _r(values, digits=5):
@@ -65,7 +63,7 @@ def decimate(traj: Trajectory, points: int = 2000, lo: float | None = None, hi: 
 
 def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = None, height: int = 520) -> go.Figure:
     """The trapezoidal timing law of one segment: ``s``, ``sdot`` and ``sddot`` against the time since its start,
-    the two blends shaded."""
+    the two blends shaded (the law of Siciliano et al., eq. 4.8, with ``t_f`` its duration)."""
     if not isinstance(law, Trapezoidal):
         raise ScaraError(f"expected a Trapezoidal timing law, got {type(law).__name__}")
     T, tc = law.duration, law.blend
@@ -74,15 +72,16 @@ def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = N
     sdd[-1] = -law.acceleration  # draw the last blend up to its end
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05)
     for row, (y, label, name) in enumerate(((s, "s (m)", "s"), (sd, "ṡ (m/s)", "ṡ"), (sdd, "s̈ (m/s²)", "s̈")), 1):
-        fig.add_trace(go.Scatter(x=_r(tau, 4), y=_r(y, 6), mode="lines", name=f"{name}: trapezoidal law",
-                                 line=dict(color=PALETTE["reference"], width=2)), row=row, col=1)
+        fig.add_trace(go.Scatter(x=_r(tau, 4), y=_r(y, 6), mode="lines", name=name,
+                                 line=dict(color=PALETTE["reference"], width=2, dash=DASHES[row - 1])), row=row, col=1)
         fig.update_yaxes(title_text=label, row=row, col=1)
     fig.update_xaxes(title_text="time since the segment started, τ (s)", row=3, col=1)
     shapes = [dict(type="rect", xref="x", yref="paper", x0=a, x1=b, y0=0, y1=1, layer="below", fillcolor=_VIA_COLOUR,
                    opacity=0.2, line=dict(width=0)) for a, b in ((0.0, tc), (T - tc, T))]
-    fig.update_layout(**_layout(title or f"Trapezoidal timing law: L = {law.length:.3f} m, T = {T:g} s, "
-                                    f"t_c = {tc:.3g} s (shaded: blends)", height), shapes=shapes)
-    return fig
+    fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="blends", showlegend=True, hoverinfo="skip",
+                             line=dict(color=_VIA_COLOUR, width=10), opacity=0.35))
+    return finish_layout(fig, title or f"L = {law.length:.3f} m, t_f = {T:g} s, t_c = {tc:.3g} s", height,
+                         shapes=shapes)
 
 
 def _waypoint_traces(traj, dims=3, showlegend=True, text=True):
@@ -116,36 +115,35 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
     k = decimate(traj, points)
     x = traj.x[k]
     fig = go.Figure()
-    fig.add_trace(go.Scatter3d(x=_r(x[:, 0]), y=_r(x[:, 1]), z=_r(x[:, 2]), mode="lines", name="planned path",
+    fig.add_trace(go.Scatter3d(x=_r(x[:, 0]), y=_r(x[:, 1]), z=_r(x[:, 2]), mode="lines", name="path",
                                line=dict(color=PALETTE["reference"], width=4)))
     for j, kind in enumerate(traj.segment_kinds):
         if kind == "arc":
             ka = decimate(traj, 200, traj.segment_start[j], traj.segment_end[j])
             fig.add_trace(go.Scatter3d(x=_r(traj.x[ka, 0]), y=_r(traj.x[ka, 1]), z=_r(traj.x[ka, 2]), mode="lines",
-                                       name=f"circular arc {traj.segment_labels[j]}",
+                                       name=f"arc {traj.segment_labels[j]}",
                                        line=dict(color=_ARC_COLOUR, width=7)))
     for tr in _waypoint_traces(traj, 3):
         fig.add_trace(tr)
-    fig.update_layout(**_layout(title or "The planned path in the base frame", height),
-                      scene=dict(xaxis_title="x (m)", yaxis_title="y (m)", zaxis_title="z (m)", aspectmode="manual",
-                                 aspectratio=dict(x=1.7, y=0.8, z=0.8),
-                                 camera=dict(eye=dict(x=0.7, y=-1.8, z=0.8))))
-    return fig
+    return finish_layout(fig, title or "The reference path in the base frame", height,
+                         scene=dict(xaxis_title="x (m)", yaxis_title="y (m)", zaxis_title="z (m)", aspectmode="manual",
+                                    aspectratio=dict(x=1.7, y=0.8, z=0.8),
+                                    camera=dict(eye=dict(x=0.7, y=-1.8, z=0.8))))
 
 
 def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, title: str | None = None,
-                    height: int = 480) -> go.Figure:
+                    height: int = 460) -> go.Figure:
     """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration."""
     traj = _check(traj)
     k = decimate(traj, points)
     fig = go.Figure()
     if arm:
-        fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at the start (elbow θ2 < 0)", opacity=0.5))
-    fig.add_trace(go.Scatter(x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), mode="lines", name="planned path",
+        fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at t = 0", opacity=0.5))
+    fig.add_trace(go.Scatter(x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
     for tr in _waypoint_traces(traj, 2):
         fig.add_trace(tr)
-    fig.update_layout(**_layout(title or "The path seen from above", height))
+    finish_layout(fig, title or "The path seen from above", height)
     fig.update_xaxes(title_text="x (m)")
     fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1)
     return fig
@@ -169,7 +167,7 @@ def _segment_shapes(traj, lo=None, hi=None):
     return shapes
 
 
-def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 760) -> go.Figure:
+def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 560) -> go.Figure:
     """Position, velocity and acceleration of x, y, z against time, and phi, with the segments shaded
     (grey: every other segment; orange: overlaps at via points, where two segments move at once)."""
     traj = _check(traj)
@@ -177,20 +175,25 @@ def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = No
     t = _r(traj.t[k], 4)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
                         row_heights=[0.3, 0.3, 0.3, 0.1])
-    series = ((traj.x, "position (m)"), (traj.xd, "velocity (m/s)"), (traj.xdd, "acceleration (m/s²)"))
+    series = ((traj.x, "p (m)"), (traj.xd, "ṗ (m/s)"), (traj.xdd, "p̈ (m/s²)"))
     for row, (arr, label) in enumerate(series, start=1):
         for c in range(3):
             fig.add_trace(go.Scatter(x=t, y=_r(arr[k, c], 6), mode="lines", name=f"p_{_COMP[c]}",
                                      legendgroup=_COMP[c], showlegend=row == 1,
-                                     line=dict(color=AXIS_COLOURS[c], width=1.6)), row=row, col=1)
+                                     line=dict(color=AXIS_COLOURS[c], width=1.6, dash=DASHES[c])), row=row, col=1)
         fig.update_yaxes(title_text=label, row=row, col=1)
     fig.add_trace(go.Scatter(x=t, y=_r(np.degrees(traj.x[k, 3]), 4), mode="lines", name="φ",
-                             line=dict(color=AXIS_COLOURS[3], width=1.6)), row=4, col=1)
-    fig.update_yaxes(title_text="φ (°)", row=4, col=1)
+                             line=dict(color=AXIS_COLOURS[3], width=1.6, dash=DASHES[3])), row=4, col=1)
+    fig.update_yaxes(title_text="φ (°)", nticks=3, row=4, col=1)
     fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    fig.update_layout(**_layout(title or "Planned position, velocity and acceleration (shaded: segments; "
-                                    "orange: via-point overlaps)", height), shapes=_segment_shapes(traj))
-    return fig
+    _band_legend(fig)
+    return finish_layout(fig, title or "Position, velocity, acceleration", height, shapes=_segment_shapes(traj))
+
+
+def _band_legend(fig):
+    """Legend entries for the shaded bands of :func:`_segment_shapes` (shapes have none of their own)."""
+    fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="via overlap", hoverinfo="skip",
+                             line=dict(color=_VIA_COLOUR, width=10), opacity=0.4))
 
 
 def _window(traj, i, margin):
@@ -203,47 +206,53 @@ def _corner_data(traj, i, lo, hi, points):
     return traj.x[k, 0], traj.x[k, 1], traj.t[k], np.linalg.norm(traj.xd[k, :3], axis=1)
 
 
-def _corner_layout(fig, traj, i, title, height, zoom, bottom=50):
+def _corner_layout(fig, traj, i, title, height, zoom, **kw):
+    """Top row: the corner seen from above (equal scales, +-``zoom`` m around the point); bottom row: the speed."""
     pv = traj.waypoints[i]
-    fig.update_layout(**_layout(title, height, bottom=bottom))
-    fig.update_xaxes(title_text="x (m)", range=[pv[0] - zoom, pv[0] + zoom], row=1, col=1)
+    finish_layout(fig, title, height, **kw)
+    fig.update_xaxes(title_text="x (m)", range=[pv[0] - zoom, pv[0] + zoom], constrain="domain", row=1, col=1)
     fig.update_yaxes(title_text="y (m)", range=[pv[1] - zoom, pv[1] + zoom], scaleanchor="x", scaleratio=1,
                      row=1, col=1)
-    fig.update_xaxes(title_text="t (s)", row=1, col=2)
-    fig.update_yaxes(title_text="speed |ṗ| (m/s)", rangemode="tozero", row=1, col=2)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    fig.update_yaxes(title_text="speed |ṗ| (m/s)", rangemode="tozero", row=2, col=1)
+
+
+def _corner_grid():
+    return make_subplots(rows=2, cols=1, row_heights=[0.58, 0.42], vertical_spacing=0.16)
 
 
 def corner_figure(with_via: Trajectory, without: Trajectory, index: int, margin: float = 3.0, zoom: float = 0.03,
-                  points: int = 400, title: str | None = None, height: int = 420) -> go.Figure:
-    """A via point's corner seen from above (left) and the speed around it (right), for the trajectory that
-    anticipates the next segment (``with_via``) and one that stops there (``without``)."""
+                  points: int = 400, title: str | None = None, height: int = 540) -> go.Figure:
+    """A via point's corner seen from above (top) and the speed around it (bottom), for the trajectory that
+    anticipates the next segment (``with_via``, black and solid like the reference) and one that stops there
+    (``without``, grey and dashed)."""
     _check(with_via), _check(without)
     lab = with_via.labels[index]
-    fig = make_subplots(rows=1, cols=2, column_widths=[0.45, 0.55], horizontal_spacing=0.12)
-    for traj, name, colour, dash in ((without, f"stop at {lab}", PALETTE["transpose"], "dash"),
-                                     (with_via, f"via {lab}, anticipation {with_via.anticipations[index]:g} s",
-                                      PALETTE["inverse"], "solid")):
+    fig = _corner_grid()
+    for traj, name, line in ((without, f"stop at {lab}", _STOP_LINE),
+                             (with_via, f"via, {with_via.anticipations[index]:g} s ahead", _VIA_LINE)):
         lo, hi = _window(traj, index, margin)
         x, y, t, v = _corner_data(traj, index, lo, hi, points)
         fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=name, legendgroup=name,
-                                 line=dict(color=colour, dash=dash, width=2.5)), row=1, col=1)
+                                 line=dict(line, width=2.5)), row=1, col=1)
         fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=name, legendgroup=name, showlegend=False,
-                                 line=dict(color=colour, dash=dash, width=2.5)), row=1, col=2)
+                                 line=dict(line, width=2.5)), row=2, col=1)
     pv = with_via.waypoints[index]
     fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="top right",
-                             name=f"waypoint {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
+                             name=f"point {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
                   row=1, col=1)
-    _corner_layout(fig, with_via, index, title or f"The corner at {lab}: anticipating the next segment rounds it",
-                   height, zoom)
+    _corner_layout(fig, with_via, index, title or f"The corner at {lab}, from above, and the speed", height, zoom)
     return fig
 
 
 def anticipation_slider_figure(plan: dict, index: int, values=None, margin: float = 3.0, zoom: float = 0.03,
-                               points: int = 300, title: str | None = None, height: int = 460) -> go.Figure:
-    """Kernel-free slider figure: the corner at waypoint ``index`` (top view) and the speed around it, as its
-    anticipation takes each of ``values`` (s; default 0 to 3 s by 0.25 s). ``plan`` holds the keyword arguments
-    of :func:`plan_path` (e.g. :func:`~scara.trajectory.reference_plan()`); the other waypoints are unchanged.
-    At 0 the arm stops at the point; the distance by which the corner is cut grows with the anticipation."""
+                               points: int = 300, title: str | None = None, height: int = 560) -> go.Figure:
+    """Kernel-free slider figure: the corner at waypoint ``index`` (top view, top) and the speed around it
+    (bottom), as its anticipation takes each of ``values`` (s; default 0 to 3 s by 0.25 s). ``plan`` holds the
+    keyword arguments of :func:`plan_path` (e.g. :func:`~scara.trajectory.reference_plan()`); the other
+    waypoints are unchanged. At 0 the arm stops at the point (grey, dashed, always shown); the distance by
+    which the corner is cut grows with the anticipation. Raises :class:`ScaraError` for fewer than 2 or more
+    than 25 values."""
     values = np.arange(0.0, 3.01, 0.25) if values is None else np.asarray(values, dtype=float)
     if values.size < 2 or values.size > 25:
         raise ScaraError(f"give between 2 and 25 anticipation values, got {values.size}")
@@ -260,37 +269,40 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
     data = [_corner_data(tr, index, max(lo, 0.0), min(hi, tr.t[-1]), points) for tr in trajs]
     dist = [tr.corner_distances().get(lab, (0.0, 0.0))[0] if a > 0 else 0.0 for tr, a in zip(trajs, values)]
 
-    fig = make_subplots(rows=1, cols=2, column_widths=[0.45, 0.55], horizontal_spacing=0.12)
+    fig = _corner_grid()
     x, y, t, v = data[0]
-    fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=f"stop at {lab} (anticipation 0)",
-                             line=dict(color=PALETTE["transpose"], dash="dash", width=2)), row=1, col=1)
-    fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=f"stop at {lab} (anticipation 0)",
-                             showlegend=False, line=dict(color=PALETTE["transpose"], dash="dash", width=2)), row=1, col=2)
+    fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=f"stop at {lab}",
+                             line=dict(_STOP_LINE, width=2)), row=1, col=1)
+    fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=f"stop at {lab}",
+                             showlegend=False, line=dict(_STOP_LINE, width=2)), row=2, col=1)
     a0 = len(values) // 2
     x, y, t, v = data[a0]
-    name = f"via {lab} (anticipation on the slider)"
-    fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=name, line=dict(color=PALETTE["inverse"], width=3)),
+    name = "anticipation on the slider"
+    fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=name, line=dict(_VIA_LINE, width=3)),
                   row=1, col=1)
     fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=name, showlegend=False,
-                             line=dict(color=PALETTE["inverse"], width=3)), row=1, col=2)
+                             line=dict(_VIA_LINE, width=3)), row=2, col=1)
     pv = stop.waypoints[index]
     fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="top right",
-                             name=f"waypoint {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
+                             name=f"point {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
                   row=1, col=1)
-    heading = title or f"Anticipation at {lab}: the corner and the speed"
+    heading = title or f"Anticipation at {lab}"
+
+    def head(a, d):
+        return f"{heading}: {a:g} s<br>the arm passes {1000 * d:.1f} mm from {lab}"
+
     steps = []
     for a, (x, y, t, v), d in zip(values, data, dist):
         steps.append(dict(label=f"{a:g}", method="update", args=[
-            {"x": [_r(x), _r(t, 4)], "y": [_r(y), _r(v, 6)]},
-            {"title.text": f"{heading} (anticipation {a:g} s: passes {1000 * d:.1f} mm from {lab})"}, [2, 3]]))
-    _corner_layout(fig, stop, index, f"{heading} (anticipation {values[a0]:g} s: passes {1000 * dist[a0]:.1f} mm "
-                   f"from {lab})", height, zoom, bottom=120)
-    fig.update_layout(sliders=[slider(steps, "anticipation (s): ", active=a0, pad_top=60)])
+            {"x": [_r(x), _r(t, 4)], "y": [_r(y), _r(v, 6)]}, {"title.text": head(a, d)}, [2, 3]]))
+    _corner_layout(fig, stop, index, head(values[a0], dist[a0]), height, zoom,
+                   sliders=[slider(steps, "anticipation (s): ", active=a0, pad_top=50)])
+    fig.update_layout(margin=dict(b=110))
     return fig
 
 
 def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: str | None = None,
-                          height: int = 640) -> go.Figure:
+                          height: int = 560) -> go.Figure:
     """The joint motion the path implies (closed-form inverse kinematics with the trajectory's elbow) and the
     manipulability ``w = a1 a2 |sin θ2|`` met along it, its minimum marked."""
     traj = _check(traj)
@@ -301,19 +313,19 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05, row_heights=[0.45, 0.2, 0.35])
     for j, name in ((0, "θ1"), (1, "θ2"), (3, "θ4")):
         fig.add_trace(go.Scatter(x=t, y=_r(np.degrees(q[k, j]), 3), mode="lines", name=name,
-                                 line=dict(color=JOINT_COLOURS[j], width=1.8)), row=1, col=1)
+                                 line=dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j])), row=1, col=1)
     fig.add_trace(go.Scatter(x=t, y=_r(q[k, 2], 5), mode="lines", name="d3",
-                             line=dict(color=JOINT_COLOURS[2], width=1.8)), row=2, col=1)
-    fig.add_trace(go.Scatter(x=t, y=_r(w[k], 5), mode="lines", name="manipulability w",
+                             line=dict(color=JOINT_COLOURS[2], width=1.8, dash=DASHES[2])), row=2, col=1)
+    fig.add_trace(go.Scatter(x=t, y=_r(w[k], 5), mode="lines", name="w",
                              line=dict(color=PALETTE["reference"], width=1.8)), row=3, col=1)
     km = int(np.argmin(w))
     fig.add_trace(go.Scatter(x=[round(float(traj.t[km]), 3)], y=[round(float(w[km]), 5)], mode="markers+text",
-                             text=[f"min w = {w[km]:.4f} m² at {traj.t[km]:.2f} s"], textposition="top right",
-                             name="minimum of w", marker=dict(size=10, color=PALETTE["transpose"])), row=3, col=1)
+                             text=[f"{w[km]:.4f} m² at {traj.t[km]:.1f} s"], textposition="top right",
+                             name="min w", marker=dict(size=10, color=PALETTE["force"], symbol="diamond")),
+                  row=3, col=1)
     fig.update_yaxes(title_text="angle (°)", row=1, col=1)
     fig.update_yaxes(title_text="d3 (m)", row=2, col=1)
     fig.update_yaxes(title_text="w (m²)", rangemode="tozero", row=3, col=1)
     fig.update_xaxes(title_text="t (s)", row=3, col=1)
-    fig.update_layout(**_layout(title or "The joint motion behind the path, and the manipulability along it",
-                                    height), shapes=_segment_shapes(traj))
-    return fig
+    _band_legend(fig)
+    return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=_segment_shapes(traj))

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import plotly.graph_objects as go
 
-from ._common import JOINT_COLOURS, base_layout, slider
+from ._common import DASHES, JOINT_COLOURS, slider
+from .clik import _fit_layout
 
 __all__ = ["IMPLEMENTATION_COLOURS", "PER_CALL_TASKS", "RUN_TASKS", "speed_figure", "rotor_coupling_figure"]
 
@@ -55,7 +56,7 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
         secs = [e[n]["us"] * 1e-6 for n in names]
         text = [f"{_fmt(s)}<br>{e[n]['ratio_to_ours']:.2g}× ours" for n, s in zip(names, secs)]
         hover = [f"{n}: {e[n]['call']}" for n in names]
-        tasks.append((label + ", one call", short, names, secs, text, hover, "time per call (s, log scale)"))
+        tasks.append((label + ", one call", short, names, secs, text, hover, "time per call (s, log)"))
     for key, label, short in RUN_TASKS:
         e = results[key]
         names = [n for n in ("ours", "numpy", "pinocchio", "toolbox") if n in e]
@@ -67,7 +68,7 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
                 t += "<br>(extrapolated)"
             text.append(t)
         hover = [f"{n}: {e[n]['call']}" for n in names]
-        tasks.append((label, short, names, secs, text, hover, "time for the whole run (s, log scale)"))
+        tasks.append((label, short, names, secs, text, hover, "time for the run (s, log)"))
 
     for i, (label, _, names, secs, text, hover, _) in enumerate(tasks):
         fig.add_trace(go.Bar(
@@ -83,18 +84,17 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
         vis = [j == i for j in range(len(tasks))]
         steps.append(dict(label=short, method="update",
                           args=[{"visible": vis}, {"yaxis.title.text": ytitle, "yaxis.range": yrange(secs),
-                                                   "title.text": f"Speed, median of repeats: {label}"}]))
-    machine = results.get("machine", {})
-    fig.update_layout(**base_layout(f"Speed, median of repeats: {tasks[0][0]}", height),
-                      sliders=[slider(steps, "task: ", pad_top=60)])
-    fig.update_layout(margin=dict(l=70, r=20, t=70, b=40), showlegend=False)
+                                                   "title.text": f"Speed: {label}"}]))
+    fig.update_layout(**_fit_layout(f"Speed: {tasks[0][0]}", height, legend_rows=0),
+                      sliders=[slider(steps, "task: ", pad_top=95)])
+    fig.update_layout(margin=dict(l=70, r=20, b=40), showlegend=False)
     fig.update_yaxes(type="log", range=yrange(tasks[0][3]), title_text=tasks[0][6])
-    fig.update_xaxes(title_text=f"implementation (measured {results.get('date', '?')[:10]} on "
-                                f"{machine.get('cpu', '?')}, {machine.get('cores', '?')} cores)")
+    fig.update_xaxes(title_text="implementation (median of repeats)", title_standoff=8)
+    fig.for_each_trace(lambda tr: tr.update(x=[n.replace(" (", "<br>(") for n in tr.x]))
     return fig
 
 
-def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, height: int = 420) -> go.Figure:
+def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, height: int = 460) -> go.Figure:
     """The torque ``Delta_B qdd`` that the libraries' diagonal rotor model leaves out, along a motion.
 
     ``t`` (N,) s; ``coupling_torque`` and ``torque`` (N, 4) (N m, N for the quill). One trace per joint,
@@ -109,12 +109,9 @@ def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, he
     for j in range(4):
         share = np.max(np.abs(d[:, j])) / max(np.max(np.abs(tau[:, j])), 1e-300)
         fig.add_trace(go.Scatter(x=t[::step], y=d[::step, j], mode="lines",
-                                 line=dict(color=JOINT_COLOURS[j], width=1.5),
+                                 line=dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j]),
                                  name=f"joint {j + 1} ({units[j]}): up to {100 * share:.2f} % of |τ|"))
-    fig.update_layout(**base_layout("Rotor coupling torque ΔB q̈ along the reference motion (5 kg payload)",
-                                    height))
-    fig.update_layout(legend=dict(orientation="h", yanchor="top", y=-0.18, xanchor="left", x=0),
-                      margin=dict(b=110))
+    fig.update_layout(**_fit_layout("Rotor coupling torque ΔB q̈ (5 kg payload)", height, legend_rows=2))
     fig.update_xaxes(title_text="time t (s)")
     fig.update_yaxes(title_text="ΔB q̈ (N m; N for joint 3)")
     return fig
