@@ -17,6 +17,8 @@ from scara.plots import (arm_figure, determinant_figure, duality_figure, ellipse
                          inverse_kinematics_figure, joint_slider_figure, manipulability_map_figure,
                          reference_ellipses_figure, workspace_ellipses_figure)
 from scara.plots.kinematics import PHONE_PLOT_WIDTH, arm_geometry, legend_entries, legend_rows
+
+from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
 from scara.plots.manipulability import REFERENCE_CONFIGURATIONS, ellipse_xy, workspace_points
 from scara.manipulability import force_ellipsoid, velocity_ellipsoid
 
@@ -302,6 +304,7 @@ from scara import plan_path, reference_plan, reference_trajectory  # noqa: E402
 from scara.plots import (anticipation_slider_figure, corner_figure, joint_profiles_figure,  # noqa: E402
                          path_figure, profiles_figure, timing_law_figure, top_view_figure)
 from scara.plots.trajectory import decimate  # noqa: E402
+from scara.plots import course_figure  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -430,6 +433,29 @@ def test_joint_profiles_mark_the_smallest_manipulability(traj):
     assert np.allclose(np.array(wtr.y, float), P.a1 * P.a2 * np.sqrt(1 - c2**2), atol=1e-5)
 
 
+def test_course_figure_moves_the_arm_along_the_path(traj):
+    fig = course_figure(traj, steps=8)
+    (sl,) = fig.layout.sliders
+    assert len(sl.steps) == 8 and sl.steps[0].label == "0" and sl.steps[-1].label == "70"
+    names = [t.name for t in fig.data]
+    arm, trail = names.index("arm (Ch. 1, 4)"), names.index("covered")
+    for s in sl.steps:
+        data, layout, idx = s.args
+        assert list(idx) == [trail, arm]
+        t = float(s.label)
+        k = int(round(t / traj.dt))
+        tool = np.array([data["x"][1][-1], data["y"][1][-1], data["z"][1][-1]])
+        # the arm's last point is the gripper, at the path's position at that instant (forward kinematics of
+        # the inverse kinematics: an independent route through eq. (1.5))
+        assert np.allclose(tool, traj.x[k, :3], atol=1e-4), (t, tool, traj.x[k, :3])
+        assert np.allclose([data["x"][0][-1], data["y"][0][-1]], traj.x[k, :2], atol=1e-4)
+        assert f"t = {t:.0f} s" in layout["title.text"]
+    # the scene holds the whole path and the arm's base
+    lay = fig.layout.scene
+    for ax, c in ((lay.xaxis, 0), (lay.yaxis, 1)):
+        assert ax.range[0] <= min(traj.x[:, c].min(), 0.0) and ax.range[1] >= traj.x[:, c].max()
+
+
 # ------------------------------------------------------------------------------------------- reading rules
 def _all_figures():
     tr = reference_trajectory()
@@ -444,6 +470,7 @@ def _all_figures():
         "timing": timing_law_figure(tr.laws[1]), "path": path_figure(tr), "top": top_view_figure(tr),
         "profiles": profiles_figure(tr), "corner": corner_figure(tr, stop, 4),
         "anticipation": anticipation_slider_figure(reference_plan(), 4), "joints": joint_profiles_figure(tr),
+        "course": course_figure(tr),
     }
 
 
@@ -452,49 +479,14 @@ def figures():
     return _all_figures()
 
 
-def _lines(title):
-    import re
-    return [re.sub(r"<[^>]+>", "", ln) for ln in (title or "").split("<br>")]
-
-
 def test_every_figure_reads_on_a_laptop_and_a_phone(figures):
     for name, fig in figures.items():
-        lay = fig.layout
-        assert 380 <= lay.height <= 560, (name, lay.height)
-        assert lay.width is None, name  # the width follows the page
-        titles = [lay.title.text] + [s.args[1]["title.text"] for sl in (lay.sliders or []) for s in sl.steps
-                                     if "title.text" in s.args[1]]
-        for t in titles:
-            # about 45 characters of the 15 px title font fit a 360 px phone page
-            assert all(len(ln) <= 45 for ln in _lines(t)), (name, t)
-        names = legend_entries(fig)
-        assert names, f"{name}: no legend"
-        rows = legend_rows(names)
-        assert rows <= 4, (name, rows, names)
-        # room is reserved above the plot for the title and the legend as it wraps at phone width
-        n_title = len(_lines(lay.title.text)) if lay.title.text else 0
-        assert lay.margin.t >= 14 + 22 * n_title + 21 * rows, name
-        assert lay.legend.yref == "container" and lay.title.yref in (None, "container")
+        check_reads_on_a_laptop_and_a_phone(name, fig)
 
 
 def test_every_axis_has_a_title_with_a_unit(figures):
-    import re
-    unit = re.compile(r"\(.+\)")
     for name, fig in figures.items():
-        lay = fig.layout
-        if lay.scene.xaxis.title.text:  # 3-D
-            for ax in (lay.scene.xaxis, lay.scene.yaxis, lay.scene.zaxis):
-                assert unit.search(ax.title.text or ""), (name, ax.title.text)
-            continue
-        used_y = {t.yaxis or "y" for t in fig.data if t.type != "scatter3d"}
-        used_x = {t.xaxis or "x" for t in fig.data if t.type != "scatter3d"}
-        for key in used_y:
-            ax = lay["yaxis" + key[1:]]
-            assert unit.search(ax.title.text or ""), (name, key, ax.title.text)
-        # shared x axes carry their title on the bottom plot only: at least one titled x axis per figure,
-        # and every titled one names its unit
-        titled = [lay["xaxis" + k[1:]].title.text for k in used_x if lay["xaxis" + k[1:]].title.text]
-        assert titled and all(unit.search(t) for t in titled), (name, titled)
+        check_axis_titles_with_units(name, fig)
 
 
 def test_styles_survive_greyscale(figures):

@@ -18,7 +18,7 @@ from plotly.subplots import make_subplots
 from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik
 from ..errors import ScaraError, UnstableError
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
-from .kinematics import _layout
+from .kinematics import finish_layout
 
 __all__ = [
     "METHOD_LABELS",
@@ -53,16 +53,6 @@ _JOINTS = ("θ1", "θ2", "d3", "θ4")
 #: on the reference) and close to the inverse's (2 / (dt K) = 5 for the seed's x, y, z gains)
 GAIN_SCALES = (0.25, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 3.5, 3.9, 4.5, 4.9)
 _FLOOR = 1e-12  # log axes: values below this (exact zeros) are drawn at the floor
-
-
-def _fit_layout(title: str, height: int, legend_rows: int = 1, **kw) -> dict:
-    """The book's layout for these figures: a title and a horizontal legend at the top, both placed relative to
-    the whole figure (``yref="container"``) so that plotly reserves room for the legend as it wraps on a
-    phone-width page; title and legend fonts as in the other chapters (15 px and 12 px)."""
-    lay = _layout(title, height, legend_rows=legend_rows, **kw)
-    lay["title"]["font"] = dict(size=15)
-    lay["legend"]["font"] = dict(size=12)
-    return lay
 
 
 def _f(a):
@@ -120,25 +110,6 @@ def envelope(t, y, points: int = 1000):
     return tt, np.maximum(head, _FLOOR)
 
 
-def _method_menu(fig: go.Figure, groups: list, titles: list) -> None:
-    """A dropdown (plotly ``updatemenus``, works on a static page) showing one group of traces at a time.
-
-    ``groups[i]`` lists the trace indices of the i-th entry, ``titles[i]`` its figure title; the first group
-    is shown initially."""
-    n = len(fig.data)
-    buttons = []
-    for gi, (group, title) in enumerate(zip(groups, titles)):
-        vis = [False] * n
-        for k in group:
-            vis[k] = True
-        buttons.append(dict(label=title.split(", ")[-1], method="update",
-                            args=[{"visible": vis}, {"title.text": title}]))
-    for k in range(n):
-        fig.data[k].visible = k in groups[0]
-    fig.update_layout(updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right", y=1.02,
-                                        yanchor="bottom", showactive=True, active=0)])
-
-
 def clik_joints_figure(results, points: int = 800, title: str | None = None, height: int = 560) -> go.Figure:
     """Joint motion in three stacked panels sharing the time axis: the revolute joints ``θ1, θ2, θ4`` (rad),
     the quill ``d3`` (m), and the revolute joint rates (rad/s). One column, so that it reads at phone width;
@@ -162,9 +133,9 @@ def clik_joints_figure(results, points: int = 800, title: str | None = None, hei
                                      legendgroup=f"{r.method}{name}", showlegend=False, line=style), row=3, col=1)
         groups.append(list(range(first, len(fig.data))))
         titles.append(f"Joint motion, {_label(r)}")
-    fig.update_layout(**_fit_layout(title or titles[0], height))
-    if len(rs) > 1:
-        _method_menu(fig, groups, titles if title is None else [title] * len(rs))
+    heads = titles if title is None else [title] * len(rs)
+    menu = [(_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
+    finish_layout(fig, heads[0], height, groups=groups if menu else None, menu=menu)
     fig.update_yaxes(title_text="θ1, θ2, θ4 (rad)", row=1, col=1)
     fig.update_yaxes(title_text="d3 (m)", row=2, col=1)
     fig.update_yaxes(title_text="rates (rad/s)", row=3, col=1)
@@ -186,7 +157,7 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
             fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=_label(r), legendgroup=r.method,
                                      showlegend=row == 1, line=dict(color=_colour(r), width=1.8, dash=_dash(r))),
                           row=row, col=1)
-    fig.update_layout(**_fit_layout(title or "Tracking error along the reference", height))
+    finish_layout(fig, title or "Tracking error along the reference", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -210,9 +181,9 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
                           row=1 if i < 3 else 2, col=1)
         groups.append(list(range(first, len(fig.data))))
         titles.append(f"Error components, {_label(r)}")
-    fig.update_layout(**_fit_layout(title or titles[0], height))
-    if len(rs) > 1:
-        _method_menu(fig, groups, titles if title is None else [title] * len(rs))
+    heads = titles if title is None else [title] * len(rs)
+    menu = [(_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
+    finish_layout(fig, heads[0], height, groups=groups if menu else None, menu=menu)
     fig.update_yaxes(title_text="e_x, e_y, e_z (m)", exponentformat="power", row=1, col=1)
     fig.update_yaxes(title_text="e_φ (rad)", exponentformat="power", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -229,7 +200,7 @@ def manipulability_figure(results, points: int = 1000, title: str | None = None,
         fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=_label(r),
                                  line=dict(color=_colour(r), width=2.2, dash=_dash(r))))
     wmax = max(float(np.max(r.w)) for r in rs)
-    fig.update_layout(**_fit_layout(title or "Manipulability along the path", height))
+    finish_layout(fig, title or "Manipulability along the path", height)
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(title_text="w (m²)", rangemode="tozero", range=[0, max(0.26, 1.05 * wmax)])
     return fig
@@ -259,8 +230,7 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
                       row=2, col=1)
     for s in (-1, 1):
         fig.add_hline(y=s * math.pi / 2, line=dict(color="#999999", width=1, dash="dot"), row=2, col=1)
-    fig.update_layout(**_fit_layout(title or f"The relaxed {COMPONENTS[i]} drifts while θ2 climbs to ±90°", height,
-                                legend_rows=2))
+    finish_layout(fig, title or f"The relaxed {COMPONENTS[i]} drifts while θ2 climbs to ±90°", height)
     fig.update_yaxes(title_text=f"{COMPONENTS[i]} ({unit})", row=1, col=1)
     fig.update_yaxes(title_text="θ2 (rad)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -290,8 +260,7 @@ def transpose_stability_figure(stability: TransposeStability, runs: dict, points
         tt, yy = envelope(r.t, r.position_error, points)
         fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=f"‖e_p‖, {label}", showlegend=False,
                                  legendgroup=label, line=line), row=2, col=1)
-    fig.update_layout(**_fit_layout(title or "Transpose: Euler's limit on the gain", height,
-                                legend_rows=3))
+    finish_layout(fig, title or "Transpose: Euler's limit on the gain", height)
     fig.update_yaxes(title_text="gain scale (× seed K)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -317,7 +286,7 @@ def damping_figure(runs: dict, points: int = 1500, title: str | None = None, hei
                                  line=line), row=2, col=1)
         fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=label, legendgroup=label,
                                  showlegend=False, line=line), row=3, col=1)
-    fig.update_layout(**_fit_layout(title or "Near a singularity: exact and damped inverse", height))
+    finish_layout(fig, title or "Near a singularity: exact and damped inverse", height)
     fig.update_yaxes(title_text="θ1 rate (rad/s)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_yaxes(title_text="w (m²)", row=3, col=1)
@@ -339,7 +308,7 @@ def second_order_figure(result: ClikResult, points: int = 1000, title: str | Non
             fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(data[idx, j]), mode="lines", name=f"{name} · second order",
                                      legendgroup=name, showlegend=row == 1,
                                      line=dict(color=JOINT_COLOURS[j], width=1.6, dash=DASHES[j])), row=row, col=1)
-    fig.update_layout(**_fit_layout(title or "Joint reference from the second-order CLIK", height))
+    finish_layout(fig, title or "Joint reference from the second-order CLIK", height)
     fig.update_yaxes(title_text="q (rad; m)", row=1, col=1)
     fig.update_yaxes(title_text="q̇ (rad/s; m/s)", row=2, col=1)
     fig.update_yaxes(title_text="q̈ (rad/s²; m/s²)", row=3, col=1)
@@ -366,7 +335,7 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
             continue
         c = AXIS_COLOURS[i]
         fig.add_trace(go.Scatter(x=_f(t), y=_f(np.maximum(np.abs(r.e[:n, i]), _FLOOR)), mode="lines",
-                                 name=f"|e_{name}| · {_label(r)} (K = {K[i]:g})", legendgroup=name,
+                                 name=f"|e_{name}|", legendgroup=name,
                                  line=dict(color=c, width=2)))
         fig.add_trace(go.Scatter(x=_f(t), y=_f(e0 * np.exp(-K[i] * t)), mode="lines", legendgroup=name,
                                  name="continuous law", showlegend=False, line=dict(color=c, width=1.2, dash="dash")))
@@ -374,11 +343,12 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
                                  legendgroup=name, name="Euler", showlegend=False,
                                  marker=dict(color=c, size=6, symbol=symbols[i])))
     # legend keys for the two predictions, drawn once in neutral grey
-    fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="e(0) exp(-K t)",
+    fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="exp(−K t)",
                              line=dict(color="#777777", width=1.2, dash="dash")))
-    fig.add_trace(go.Scatter(x=[None], y=[None], mode="markers", name="e(0) (1 - dt K)^k",
+    fig.add_trace(go.Scatter(x=[None], y=[None], mode="markers", name="(1 − dt K)^k",
                              marker=dict(color="#777777", size=6, symbol="circle-open")))
-    fig.update_layout(**_fit_layout(title or "Decay of an initial error", height, legend_rows=3))
+    gains = ", ".join(f"{g:g}" for g in K)
+    finish_layout(fig, title or f"Decay of an initial error, {_label(r)}<br>K = diag({gains})", height)
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e_i| (m; rad for φ)")
     return fig
@@ -411,7 +381,7 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
             fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=METHOD_LABELS.get(m, m),
                                      visible=False, line=dict(color=PALETTE.get(m, "#000000"), width=1.8,
                                                               dash=METHOD_DASHES.get(m, "solid"))))
-        notes.append("; ".join(note))
+        notes.append("<br>".join(note))
     nm = len(methods)
     active = int(np.argmin(np.abs(scales - 1.0)))
     for k in range(nm):
@@ -423,8 +393,8 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
             vis[i * nm + k] = True
         steps.append({"label": f"{s:.2f}", "method": "update",
                       "args": [{"visible": vis}, {"title.text": f"K = {s:.2f} × seed<br>{notes[i]}"}]})
-    lay = _fit_layout(f"K = {scales[active]:.2f} × seed<br>{notes[active]}", height)
-    fig.update_layout(**lay, sliders=[slider(steps, "gain scale × seed K: ", active=active)])
+    finish_layout(fig, f"K = {scales[active]:.2f} × seed<br>{notes[active]}", height,
+                  sliders=[slider(steps, "gain scale × seed K: ", active=active)])
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", range=[-10.5, -1.5])
     return fig

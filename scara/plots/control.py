@@ -41,7 +41,6 @@ CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot"
 _JOINTS = ("θ1", "θ2", "d3", "θ4")
 _COMPONENTS = ("x", "y", "z", "φ")
 _FLOOR = 1e-12
-_MENU_PX = 36  # room for the dropdown between the legend and the plot
 
 
 def _f(a):
@@ -82,43 +81,6 @@ def _line(x, y, name, colour, width=1.5, dash=None, showlegend=True, legendgroup
                       line=dict(color=colour, width=width, dash=dash), **kw)
 
 
-def _finish(fig: go.Figure, title: str, height: int, groups: list | None = None, menu: list | None = None,
-            bottom: int | None = None) -> go.Figure:
-    """The book's layout (:func:`scara.plots.kinematics.finish_layout`: short title, legend under it, room for the
-    legend as it wraps at phone width), with the legend rows counted on the traces one dropdown entry shows
-    (``groups``: trace indices per entry) and, when ``menu`` (a list of ``(label, title)``, one per group) is
-    given, a dropdown between the legend and the plot that shows one group at a time."""
-    finish_layout(fig, title, height)
-    if groups:
-        rows = max(legend_rows([fig.data[k].name for k in g if fig.data[k].showlegend is not False])
-                   for g in groups)
-    else:
-        rows = legend_rows(legend_entries(fig))
-    lines = title.count("<br>") + 1
-    title_px = 22 * lines
-    legend_px = 21 * rows
-    top = 14 + title_px + legend_px + (_MENU_PX if menu else 0) + 8
-    margin = dict(t=top) if bottom is None else dict(t=top, b=bottom)
-    # plotly anchors a title of several lines about one line too high ("top" is not the first line's top):
-    # lower it so that the first line is not cut off at the top of the figure
-    fig.update_layout(margin=margin, legend=dict(tracegroupgap=0), showlegend=rows > 0,
-                      title_y=1.0 - (10 + 18 * (lines - 1)) / height)
-    if menu:
-        n = len(fig.data)
-        buttons = []
-        for group, (label, head) in zip(groups, menu):
-            vis = [k in group for k in range(n)]
-            buttons.append(dict(label=label, method="update", args=[{"visible": vis}, {"title.text": head}]))
-        for k in range(n):
-            fig.data[k].visible = k in groups[0]
-        plot_px = height - top - (fig.layout.margin.b if fig.layout.margin.b is not None else 50)
-        fig.update_layout(title_text=menu[0][1],
-                          updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right",
-                                            y=1.0 + 6 / plot_px, yanchor="bottom", showactive=True, active=0,
-                                            pad=dict(t=0, b=0), font=dict(size=12))])
-    return fig
-
-
 def _two_lines(head: str, label: str) -> str:
     return f"{head}<br>{label}"
 
@@ -155,7 +117,7 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
         k = int(np.argmax(np.abs(r.qdd[:, 2])))
         peak = float(r.qdd[k, 2])
         notes.append(f"d̈3 peaks at {peak:.3g} m/s² (t = {r.t[k]:.3f} s)" if not lo - pad <= peak <= hi + pad else "")
-    _finish(fig, menu[0][1], height, groups, menu)
+    finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
     fig.update_layout(annotations=[dict(text=notes[0], xref="x4 domain", yref="y4 domain", x=1.0, y=1.0,
                                         xanchor="right", yanchor="bottom", showarrow=False, font=dict(size=11))])
     fig.update_yaxes(range=ranges[0], row=4, col=1)
@@ -180,13 +142,13 @@ def operational_error_figure(results, points: int = 600, title: str | None = Non
         idx = thin(len(r.t), points)
         start = len(fig.data)
         for i in range(4):
-            fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], f"e_{_COMPONENTS[i]} · {label}", AXIS_COLOURS[i],
+            fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], f"e_{_COMPONENTS[i]}", AXIS_COLOURS[i],
                                 dash=DASHES[i]), row=1, col=1)
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, f"‖e_p‖ · {label}", _colour(r), width=2, dash=_dash(r)), row=2, col=1)
+        fig.add_trace(_line(tt, yy, "‖e_p‖", _colour(r), width=2, dash=_dash(r)), row=2, col=1)
         groups.append(list(range(start, len(fig.data))))
         menu.append((label, _two_lines(head, label)))
-    _finish(fig, menu[0][1], height, groups, menu)
+    finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
     fig.update_yaxes(title_text="e_x, e_y, e_z (mm)<br>e_φ (mrad)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -205,7 +167,7 @@ def error_norm_figure(results, points: int = 1000, title: str | None = None, hei
         fig.add_trace(_line(tt, yy, label, _colour(r), width=2, dash=_dash(r)))
     if settle:
         fig.add_vline(x=settle, line=dict(color="#777777", dash="dot", width=1))
-    _finish(fig, title or "Position error of each controller<br>(5 kg payload, unknown to them)", height)
+    finish_layout(fig, title or "Position error of each controller<br>(5 kg payload, unknown to them)", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖p_d − p_e‖ (m)")
     fig.update_xaxes(title_text="t (s)")
     return fig
@@ -222,7 +184,7 @@ def torque_figure(results, points: int = 500, title: str | None = None, height: 
         for j in range(4):
             fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, _colour(r), width=1.6, legendgroup=label,
                                 showlegend=j == 0, dash=_dash(r)), row=j + 1, col=1)
-    _finish(fig, title or "Joint torques and the quill's force", height)
+    finish_layout(fig, title or "Joint torques and the quill's force", height)
     for j in range(4):
         fig.update_yaxes(title_text=names[j], row=j + 1, col=1)
     fig.update_xaxes(title_text="t (s)", row=4, col=1)
@@ -246,7 +208,7 @@ def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, poin
                         PALETTE["reference"], dash="dot", width=1.4), row=1, col=1)
     tt, yy = envelope(t, est - true_mass, points)
     fig.add_trace(_line(tt, yy, "|m̂_L − m_L|", AXIS_COLOURS[0], width=1.6), row=2, col=1)
-    _finish(fig, title or "Adaptive control: the payload estimate", height)
+    finish_layout(fig, title or "Adaptive control: the payload estimate", height)
     fig.update_yaxes(title_text="m̂_L (kg)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="|m̂_L − m_L| (kg)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=1, col=1)
@@ -267,14 +229,14 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
     tt, zz = envelope(t[idx], z, points)
     sub = idx[thin(len(idx), points)]
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(_line(tt, zz, f"‖z‖ · {_label(result)}", _colour(result), width=2, dash=_dash(result)),
+    fig.add_trace(_line(tt, zz, "‖z‖", _colour(result), width=2, dash=_dash(result)),
                   row=1, col=1)
-    fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"layer ε = {epsilon:g}", PALETTE["reference"],
+    fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"ε = {epsilon:g}", PALETTE["reference"],
                         dash="dot", width=1.4), row=1, col=1)
     for j in range(4):
         fig.add_trace(_line(t[sub], w[np.searchsorted(idx, sub), j], f"w_{j + 1}", JOINT_COLOURS[j], width=1.5,
                             dash=DASHES[j]), row=2, col=1)
-    _finish(fig, title or "Robust control: ‖z‖ and the term w", height)
+    finish_layout(fig, title or "Robust control: ‖z‖ and the term w", height)
     # at least two decades on the log axis, so that it is labelled in powers of ten
     lo = np.log10(max(min(float(zz.min()), epsilon), _FLOOR))
     hi = np.log10(max(float(zz.max()), epsilon))
@@ -319,7 +281,7 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
                   args=[{"visible": [per * n <= i < per * (n + 1) for i in range(per * len(eps_list))]},
                         {"title.text": head(eps)}])
              for n, eps in enumerate(eps_list)]
-    _finish(fig, head(eps_list[0]), height, groups=[list(range(per))], bottom=120)
+    finish_layout(fig, head(eps_list[0]), height, groups=[list(range(per))], bottom=120)
     fig.update_layout(sliders=[slider(steps, "ε = ")])
     fig.update_yaxes(title_text="τ (N m)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (rad/s, m/s)", row=2, col=1)
@@ -338,15 +300,15 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
         fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], _label(r), _colour(r), width=2.2, dash=_dash(r)),
                       row=1, col=1)
     t_end = with_integral.t[-1]
-    fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "theory m_L g0 / (B̂33 K_P,z)", PALETTE["reference"],
+    fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "theory", PALETTE["reference"],
                         dash="dot", width=1.2), row=1, col=1)
     idx = thin(len(with_integral.t), points)
     fig.add_trace(_line(with_integral.t[idx], with_integral.integral_action_z[idx],
                         f"K_I s_z · {_label(with_integral)}", _colour(with_integral), width=2.2,
-                        dash=_dash(with_integral)), row=2, col=1)
+                        dash=_dash(with_integral), showlegend=False), row=2, col=1)
     fig.add_trace(_line([0, t_end], [integral_target] * 2, "m_L g0 / B̂33", PALETTE["reference"], dash="dot",
                         width=1.2), row=2, col=1)
-    _finish(fig, title or "Steady-state error and integral action", height)
+    finish_layout(fig, title or "Steady-state error and integral action", height)
     fig.update_yaxes(title_text="e_z (mm)", row=1, col=1)
     fig.update_yaxes(title_text="K_I s_z (m/s²)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
@@ -368,7 +330,7 @@ def payload_sweep_figure(masses, errors: dict, title: str | None = None, height:
                                  marker=dict(size=8, symbol=("circle", "square", "diamond", "triangle-up")[n % 4]),
                                  line=dict(color=PALETTE.get(name, PALETTE["reference"]), width=2,
                                            dash=CONTROLLER_DASHES.get(name, "solid"))))
-    _finish(fig, title or "Tracking error against the payload", height)
+    finish_layout(fig, title or "Tracking error against the payload", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text=ylabel)
     fig.update_xaxes(title_text="payload m_L (kg)")
     return fig

@@ -7,8 +7,8 @@ import plotly.graph_objects as go
 
 from ..kinematics import _params
 from ..manipulability import manipulability
-from ._common import PALETTE, base_layout, slider
-from .kinematics import _scene, arm_geometry
+from ._common import PALETTE, slider
+from .kinematics import arm_geometry, finish_layout
 from .trajectory import _waypoint_traces, decimate
 
 __all__ = ["course_figure"]
@@ -18,45 +18,71 @@ def _r(a, digits=4):
     return np.round(np.asarray(a, dtype=float), digits).tolist()
 
 
-def course_figure(traj, p=None, steps: int = 15, points: int = 1500, height: int = 620) -> go.Figure:
+def _box(points: np.ndarray, margin: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
+    """Corners of the axis-aligned box around ``points`` (n, 3), ``margin`` m wider on every side."""
+    return points.min(axis=0) - margin, points.max(axis=0) + margin
+
+
+def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int = 560) -> go.Figure:
     """3-D view of the reference path of chapter 3, coloured by the manipulability of chapter 2 along it, with
     the arm of chapter 1 drawn at the joint positions the inverse kinematics gives (chapter 4 computes them
     in closed loop; chapters 5 and 6 find the torques). A slider moves the arm along the path in ``steps``
-    instants; it works in the static page."""
+    instants (it works in the static page), and a trail shows the part of the path the tool has covered.
+
+    The scene is cropped to the box that holds the path and every drawn arm (equal scales on x and y, the
+    height drawn shorter), so that the path fills the figure instead of the whole reach of the arm; hover on
+    a point for its name.
+    """
     p = _params(p)
     k = decimate(traj, points)
     q = traj.joints()
     w = manipulability(q[k], p)
+    times = np.linspace(0.0, traj.t[-1], int(steps))
+    idx = np.minimum(np.round(times / traj.dt).astype(int), traj.t.size - 1)
+    arms = [arm_geometry(q[i], p)["arm"] for i in idx]
+
     fig = go.Figure()
     fig.add_trace(go.Scatter3d(
         x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), z=_r(traj.x[k, 2]), mode="lines",
-        name="Ch. 3: the reference path (colour: Ch. 2, manipulability w)",
-        line=dict(width=7, color=_r(w, 4), colorscale="Viridis", cmin=0.0, cmax=p.a1 * p.a2,
-                  colorbar=dict(title=dict(text="w (m²)"), len=0.6, x=1.0)),
+        name="path (Ch. 3)",
+        line=dict(width=6, color=_r(w, 4), colorscale="Viridis", cmin=0.0, cmax=p.a1 * p.a2,
+                  colorbar=dict(title=dict(text="w (m²)<br>Ch. 2"), len=0.55, thickness=14, x=1.0)),
         hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>reference path</extra>"))
-    for tr in _waypoint_traces(traj, dims=3):
-        tr.name = "Ch. 3: " + tr.name
+    for tr in _waypoint_traces(traj, dims=3, text=False):
+        tr.name = tr.name.split()[0] + " (Ch. 3)"
         fig.add_trace(tr)
-    times = np.linspace(0.0, traj.t[-1], steps)
-    idx = np.minimum(np.round(times / traj.dt).astype(int), traj.t.size - 1)
-    arms = [arm_geometry(q[i], p)["arm"] for i in idx]
-    arm0 = arms[0]
+    # the trail: the samples of the decimated path covered by time t (a prefix), thinned for the slider steps
+    kt = decimate(traj, 300)
+    trail_index = len(fig.data)
+    fig.add_trace(go.Scatter3d(x=[traj.x[0, 0]], y=[traj.x[0, 1]], z=[traj.x[0, 2]], mode="lines",
+                               name="covered", line=dict(color=PALETTE["reference"], width=10),
+                               opacity=0.35, hoverinfo="skip", showlegend=False))
     arm_index = len(fig.data)
-    fig.add_trace(go.Scatter3d(x=_r(arm0[:, 0]), y=_r(arm0[:, 1]), z=_r(arm0[:, 2]), mode="lines+markers",
-                               name="Ch. 1: the arm (joints from the inverse kinematics, Ch. 1 and 4)",
+    fig.add_trace(go.Scatter3d(x=_r(arms[0][:, 0]), y=_r(arms[0][:, 1]), z=_r(arms[0][:, 2]), mode="lines+markers",
+                               name="arm (Ch. 1, 4)",
                                line=dict(color=PALETTE["arm"], width=9), marker=dict(size=4, color=PALETTE["arm"]),
                                hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>arm</extra>"))
-    steps_ = [dict(label=f"{t:.0f}", method="update",
-                   args=[{"x": [_r(a[:, 0])], "y": [_r(a[:, 1])], "z": [_r(a[:, 2])]},
-                         {"title.text": _title(t, traj, i)}, [arm_index]])
-              for t, a, i in zip(times, arms, idx)]
-    fig.update_layout(**base_layout(_title(0.0, traj, idx[0]), height),
-                      scene=_scene(p), sliders=[slider(steps_, "time t (s) = ", pad_top=10)])
-    fig.update_layout(legend=dict(orientation="h", y=-0.02, yanchor="top"), margin=dict(l=0, r=0, t=70, b=40))
-    return fig
+    step_list = []
+    for t, a, i in zip(times, arms, idx):
+        covered = kt[kt <= i]
+        trail = traj.x[np.r_[covered, i]]
+        step_list.append(dict(label=f"{t:.0f}", method="update",
+                              args=[{"x": [_r(trail[:, 0]), _r(a[:, 0])], "y": [_r(trail[:, 1]), _r(a[:, 1])],
+                                     "z": [_r(trail[:, 2]), _r(a[:, 2])]},
+                                    {"title.text": _title(t, traj, i)}, [trail_index, arm_index]]))
+    step_list[0]["args"][0]["x"][0] = [traj.x[0, 0]]
+    lo, hi = _box(np.vstack([traj.x[k, :3], *arms, [[0.0, 0.0, 0.0]]]))
+    span = hi - lo
+    scene = dict(xaxis=dict(title="x (m)", range=_r(lo[0:1].tolist() + hi[0:1].tolist(), 3)),
+                 yaxis=dict(title="y (m)", range=_r([lo[1], hi[1]], 3)),
+                 zaxis=dict(title="z (m)", range=_r([0.0, hi[2]], 3)),
+                 aspectmode="manual",
+                 aspectratio=dict(x=1.1, y=1.1 * span[1] / span[0], z=0.75),
+                 camera=dict(eye=dict(x=1.1, y=-1.7, z=0.8), center=dict(x=0.0, y=0.0, z=-0.1)))
+    return finish_layout(fig, _title(0.0, traj, idx[0]), height, scene=scene, uirevision="course",
+                         sliders=[slider(step_list, "t (s) = ", pad_top=10)])
 
 
 def _title(t, traj, i):
     x = traj.x[i]
-    return (f"The course on one figure: t = {t:.1f} s, tool at ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m"
-            "<br><sup>Chapters 5 and 6 compute the torques that make the real arm, with a 5 kg payload, do this</sup>")
+    return f"The course on one figure, t = {t:.0f} s<br>tool at ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m"

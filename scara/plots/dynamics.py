@@ -12,7 +12,7 @@ from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError
 from ..kinematics import _params
 from ._common import DASHES, JOINT_COLOURS, base_layout, slider
-from .clik import _fit_layout
+from .kinematics import finish_layout
 
 __all__ = [
     "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "decimate", "torque_share_figure", "torque_terms_figure",
@@ -22,8 +22,11 @@ __all__ = [
 #: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
 TERM_COLOURS = {"links": "#0072B2", "rotors": "#E69F00", "payload": "#D55E00", "coriolis": "#CC79A7",
                 "friction": "#009E73", "gravity": "#000000"}
-TERM_LABELS = {"links": "link and quill inertia", "rotors": "rotor inertia and coupling", "payload": "payload (5 kg)",
-               "coriolis": "Coriolis and centrifugal", "friction": "viscous friction", "gravity": "gravity (quill)"}
+#: legend names of the terms, short enough for a phone-width legend (the captions say what each one holds: link
+#: and quill inertia, rotor inertia with its coupling, the payload's share, Coriolis and centrifugal terms, viscous
+#: friction, the quill's weight)
+TERM_LABELS = {"links": "link inertia", "rotors": "rotors", "payload": "payload", "coriolis": "Coriolis",
+               "friction": "friction", "gravity": "gravity"}
 #: generalised-force unit of each joint
 JOINT_UNITS = ("N m", "N m", "N", "N m")
 _JOINT_NAMES = ("joint 1 (θ1)", "joint 2 (θ2)", "joint 3 (d3)", "joint 4 (θ4)")
@@ -74,7 +77,7 @@ def torque_share_figure(breakdown: dict, title: str = "Where the joint torque go
                     customdata=np.column_stack([rms[k], list(JOINT_UNITS)]),
                     hovertemplate="%{x}<br>" + label + ": %{y:.2f} % (RMS %{customdata[0]:.3g} %{customdata[1]})"
                                   "<extra></extra>")
-    fig.update_layout(**_fit_layout(title, height, legend_rows=2), barmode="stack")
+    finish_layout(fig, title, height, barmode="stack")
     fig.update_yaxes(title_text="share of summed RMS torques (%)", range=[0, 100])
     fig.update_xaxes(title_text="joint")
     return fig
@@ -94,14 +97,9 @@ def torque_terms_figure(t, breakdown: dict, target: int = 1500,
             y = np.asarray(breakdown[k])[idx, j]
             fig.add_scatter(x=_f32(t[idx]), y=_f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k,
                             visible=(j == 0), line=dict(color=TERM_COLOURS[k], width=1.8, dash=TERM_DASHES[k]))
-    buttons = []
-    for j in range(4):
-        vis = [jj == j for jj in range(4) for _ in range(n_terms)]
-        buttons.append(dict(label=_JOINT_NAMES[j], method="update",
-                            args=[{"visible": vis}, {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"}]))
-    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
-    fig.update_layout(updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right", y=1.0,
-                                        yanchor="bottom", pad=dict(b=6), showactive=True, active=0)])
+    groups = [list(range(j * n_terms, (j + 1) * n_terms)) for j in range(4)]
+    menu = [(_JOINT_NAMES[j], title, {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"}) for j in range(4)]
+    finish_layout(fig, title, height, groups=groups, menu=menu)
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(title_text=f"{_JOINT_SHORT[0]} ({JOINT_UNITS[0]})")
     return fig
@@ -126,7 +124,7 @@ def payload_torque_figure(t, torques: dict, target: int = 1500,
     fig.update_yaxes(title_text="τ1, τ2, τ4 (N m)", row=1, col=1)
     fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
+    finish_layout(fig, title, height)
     return fig
 
 
@@ -156,7 +154,7 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
         fig.add_scatter(x=_f32(t[idx]), y=_f32(shown[idx, j]), mode="lines", name=f"τ{j + 1}",
                         line=dict(color=JOINT_COLOURS[j], width=2.0, dash=DASHES[j]), row=2 if j == 2 else 1, col=1)
     for j in range(4):
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(base[idx, j]), mode="lines", name=f"τ with {base_m:g} kg (grey)",
+        fig.add_scatter(x=_f32(t[idx]), y=_f32(base[idx, j]), mode="lines", name=f"τ at {base_m:g} kg",
                         legendgroup="baseline", showlegend=(j == 0), hoverinfo="skip",
                         line=dict(color="#999999", width=1.0), row=2 if j == 2 else 1, col=1)
     for row, joints in ((1, (0, 1, 3)), (2, (2,))):
@@ -168,7 +166,7 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
     fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
 
     def heading(m, tau):
-        return f"{title}, payload {m:g} kg<br>largest |τ3| {np.abs(tau[:, 2]).max():.1f} N"
+        return f"{title}<br>payload {m:g} kg, largest |τ3| {np.abs(tau[:, 2]).max():.1f} N"
 
     steps = []
     for m in masses:
@@ -177,9 +175,8 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
                           args=[{"y": [[float(f"{v:.4g}") for v in tau[idx, j]] for j in range(4)]},
                                 {"title.text": heading(m, tau)}, [0, 1, 2, 3]]))
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_layout(**_fit_layout(heading(masses[active], shown), height, legend_rows=2),
-                      sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
-    fig.update_layout(margin=dict(b=130))
+    finish_layout(fig, heading(masses[active], shown), height, bottom=130,
+                  sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
     return fig
 
 
@@ -192,22 +189,23 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
     idx = decimate(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.7, 0.3], vertical_spacing=0.1)
     T, U, E = (np.asarray(energy[k]) for k in ("kinetic", "potential", "total"))
-    series = [("kinetic energy T", T - T[0], "#0072B2", "solid"),
-              ("potential energy U − U(0)", U - U[0], "#009E73", "dash"),
-              ("total energy E − E(0)", E - E[0], "#000000", "solid"),
+    series = [("kinetic T", T - T[0], "#0072B2", "solid"),
+              ("potential U − U(0)", U - U[0], "#009E73", "dash"),
+              ("total E − E(0)", E - E[0], "#000000", "solid"),
               ("friction work −W_f", -np.asarray(energy["friction_work"]), "#D55E00", "dot")]
     if np.abs(energy["input_work"]).max() > 0:
-        series.append(("input work W_in", np.asarray(energy["input_work"]), "#CC79A7", "dashdot"))
+        series.append(("input W_in", np.asarray(energy["input_work"]), "#CC79A7", "dashdot"))
     for name, y, c, d in series:
         width = 3.2 if name.startswith("total") else 2
         fig.add_scatter(x=_f32(t[idx]), y=_f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=width),
                         row=1, col=1)
     fig.add_scatter(x=_f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines",
-                    name="balance residual E − E(0) − W_in + W_f", line=dict(color="#999999", width=1.5), row=2, col=1)
+                    name="balance residual E − E(0) − W_in + W_f", showlegend=False,
+                    line=dict(color="#999999", width=1.5), row=2, col=1)
     fig.update_yaxes(title_text="energy (J)", row=1, col=1)
-    fig.update_yaxes(title_text="residual (J)", exponentformat="e", row=2, col=1)
+    fig.update_yaxes(title_text="E − E(0) − W_in + W_f (J)", exponentformat="e", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_layout(**_fit_layout(title, height, legend_rows=3))
+    finish_layout(fig, title, height)
     return fig
 
 

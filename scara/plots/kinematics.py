@@ -152,23 +152,56 @@ def legend_rows(names, plot_width: float = PHONE_PLOT_WIDTH, font_size: float = 
     return -(-len(names) // per_row)
 
 
-def finish_layout(fig: go.Figure, title: str | None, height: int, subplot_titles: bool = False, **kw) -> go.Figure:
+#: room (px) for a dropdown between the legend and the plot
+_MENU_PX = 36
+
+
+def finish_layout(fig: go.Figure, title: str | None, height: int, subplot_titles: bool = False,
+                  groups: list | None = None, menu: list | None = None, bottom: int | None = None,
+                  **kw) -> go.Figure:
     """Apply the book's layout to a finished ``fig``: a short title (lines split with ``<br>``) at the top, the
     legend under it, and room reserved for the legend as it wraps on a phone-width page, so that neither the
-    title, the legend nor the plot overlap at any width. Returns ``fig``."""
+    title, the legend nor the plot overlap at any width. Returns ``fig``.
+
+    ``groups`` (trace indices per group) counts the legend rows on the traces one group shows; with ``menu``
+    (a list of ``(label, title)`` or ``(label, title, relayout)``, one per group) a dropdown between the legend
+    and the plot shows one group at a time (plotly ``updatemenus``: it works on a static page). ``bottom`` sets the bottom margin (px);
+    ``kw`` goes to :func:`base_layout`.
+    """
+    if groups:
+        rows = max(legend_rows([fig.data[k].name for k in g if fig.data[k].name and fig.data[k].showlegend is not False])
+                   for g in groups)
+    else:
+        rows = legend_rows(legend_entries(fig))
+    if menu:
+        title = menu[0][1]
     lines = 0 if not title else title.count("<br>") + 1
-    rows = legend_rows(legend_entries(fig))
     title_px = 22 * lines
-    top = 14 + title_px + 21 * rows + (26 if subplot_titles else 8)
+    top = 14 + title_px + 21 * rows + (_MENU_PX if menu else 0) + (26 if subplot_titles else 8)
     lay = base_layout(None, height, **kw)
     if title:
-        lay["title"] = dict(text=title, x=0.0, xanchor="left", y=1.0 - 10 / height, yanchor="top", yref="container",
-                            font=dict(size=_TITLE_SIZE), pad=dict(l=8))
+        # plotly anchors a title of several lines about one line too high ("top" is not the first line's top):
+        # lower it so that the first line is not cut off at the top of the figure
+        lay["title"] = dict(text=title, x=0.0, xanchor="left", y=1.0 - (10 + 18 * (lines - 1)) / height,
+                            yanchor="top", yref="container", font=dict(size=_TITLE_SIZE), pad=dict(l=8))
     lay["legend"] = dict(orientation="h", xanchor="left", x=0.0, yref="container", yanchor="top",
-                         y=1.0 - (12 + title_px) / height, font=dict(size=_LEGEND_SIZE))
-    lay["margin"] = dict(lay["margin"], t=top)
+                         y=1.0 - (12 + title_px) / height, font=dict(size=_LEGEND_SIZE), tracegroupgap=0)
+    lay["margin"] = dict(lay["margin"], t=top) if bottom is None else dict(lay["margin"], t=top, b=bottom)
     lay["showlegend"] = rows > 0
     fig.update_layout(**lay)
+    if menu:
+        n = len(fig.data)
+        buttons = []
+        for group, entry in zip(groups, menu):
+            label, head, extra = (tuple(entry) + ({},))[:3]
+            vis = [k in group for k in range(n)]
+            buttons.append(dict(label=label, method="update", args=[{"visible": vis}, {"title.text": head, **extra}]))
+        for k in range(n):
+            fig.data[k].visible = k in groups[0]
+        plot_px = height - top - lay["margin"]["b"]
+        fig.update_layout(updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right",
+                                            y=1.0 + 6 / plot_px, yanchor="bottom", showactive=True, active=0,
+                                            pad=dict(t=0, b=0), font=dict(size=12))])
     return fig
 
 

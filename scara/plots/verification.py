@@ -6,7 +6,7 @@ import numpy as np
 import plotly.graph_objects as go
 
 from ._common import DASHES, JOINT_COLOURS, slider
-from .clik import _fit_layout
+from .kinematics import finish_layout
 
 __all__ = ["IMPLEMENTATION_COLOURS", "PER_CALL_TASKS", "RUN_TASKS", "speed_figure", "rotor_coupling_figure"]
 
@@ -85,8 +85,7 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
         steps.append(dict(label=short, method="update",
                           args=[{"visible": vis}, {"yaxis.title.text": ytitle, "yaxis.range": yrange(secs),
                                                    "title.text": f"Speed: {label}"}]))
-    fig.update_layout(**_fit_layout(f"Speed: {tasks[0][0]}", height, legend_rows=0),
-                      sliders=[slider(steps, "task: ", pad_top=95)])
+    finish_layout(fig, f"Speed: {tasks[0][0]}", height, sliders=[slider(steps, "task: ", pad_top=95)])
     fig.update_layout(margin=dict(l=70, r=20, b=40), showlegend=False)
     fig.update_yaxes(type="log", range=yrange(tasks[0][3]), title_text=tasks[0][6])
     fig.update_xaxes(title_text="implementation (median of repeats)", title_standoff=8)
@@ -111,7 +110,7 @@ def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, he
         fig.add_trace(go.Scatter(x=t[::step], y=d[::step, j], mode="lines",
                                  line=dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j]),
                                  name=f"joint {j + 1} ({units[j]}): up to {100 * share:.2f} % of |τ|"))
-    fig.update_layout(**_fit_layout("Rotor coupling torque ΔB q̈ (5 kg payload)", height, legend_rows=2))
+    finish_layout(fig, "Rotor coupling torque ΔB q̈ (5 kg payload)", height)
     fig.update_xaxes(title_text="time t (s)")
     fig.update_yaxes(title_text="ΔB q̈ (N m; N for joint 3)")
     return fig
