@@ -244,10 +244,12 @@ def _scene(p):
 
 def _pose_text(q, p, head: str = ""):
     """Two title lines (each short enough for a phone-width page): the position, then phi and det J_A."""
-    x = pose(q, p)
-    det = float(np.linalg.det(jacobian(q, p))) + 0.0
+    # rounded first, then + 0.0, so that a tiny negative value reads 0.000, not -0.000
+    x = np.round(pose(q, p), 3) + 0.0
+    det = round(float(np.linalg.det(jacobian(q, p))), 3) + 0.0
+    phi = round(math.degrees(x[3]), 1) + 0.0
     return (f"{head}p = ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m<br>"
-            f"φ = {math.degrees(x[3]):.1f}°, det J_A = {det:.3f} m²")
+            f"φ = {phi:.1f}°, det J_A = {det:.3f} m²")
 
 
 def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str | None = None,
