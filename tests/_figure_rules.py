@@ -38,7 +38,7 @@ def check_reads_on_a_laptop_and_a_phone(name: str, fig, max_height: int = 560, l
     for t in _titles(fig):
         # about 45 characters of the 15 px title font fit a 360 px phone page
         assert all(len(ln) <= 45 for ln in title_lines(t)), (name, t)
-    names = legend_entries(fig)
+    names = legend_entries(fig, visible_only=False)
     if not legend:
         assert not names or lay.showlegend is False, name
         return
@@ -54,6 +54,9 @@ def check_reads_on_a_laptop_and_a_phone(name: str, fig, max_height: int = 560, l
     # room is reserved above the plot for the title and the legend as it wraps at phone width
     n_title = len(title_lines(lay.title.text)) if lay.title.text else 0
     assert lay.margin.t >= 14 + 22 * n_title + 21 * rows, (name, lay.margin.t, n_title, rows)
+    # ... and no more than that: the plot itself keeps at least half the figure's height
+    bottom = lay.margin.b if lay.margin.b is not None else 80
+    assert lay.height - lay.margin.t - bottom >= 0.5 * lay.height, (name, lay.height, lay.margin.t, bottom)
     assert lay.legend.yref == "container" and lay.title.yref in (None, "container"), name
 
 

@@ -105,12 +105,13 @@ _TITLE_SIZE = 15
 _LEGEND_SIZE = 12
 
 
-def legend_entries(fig: go.Figure) -> list[str]:
-    """Names the legend of ``fig`` will list (traces with a name whose ``showlegend`` is not False; heat maps
-    and text-only traces only when asked)."""
+def legend_entries(fig: go.Figure, visible_only: bool = True) -> list[str]:
+    """Names the legend of ``fig`` lists (traces with a name whose ``showlegend`` is not False; heat maps and
+    text-only traces only when asked). With ``visible_only`` (the default), traces hidden at first
+    (``visible=False``, shown later by a slider step or a dropdown) are left out: the legend as the page opens."""
     names = []
     for t in fig.data:
-        if not t.name or t.showlegend is False:
+        if not t.name or t.showlegend is False or (visible_only and t.visible is False):
             continue
         if t.type in ("heatmap", "contour", "surface") and t.showlegend is not True:
             continue
