@@ -1,7 +1,9 @@
 """scara: modelling, planning and control of a 4-axis SCARA arm, the package behind the course book.
 
-The public names are listed in DESIGN.md; every function takes an optional parameter object ``p``
-(``None`` means :class:`ScaraParams()`, the robot of SPEC section 1 without payload).
+The public names, with the first line of each docstring, are listed on the book's page *The scara package:
+how it is organised*. Every function of the robot model takes an optional parameter object, ``p`` (``base`` in
+``params_from_pi`` and ``payload_from_pi``); ``None`` means ``ScaraParams()``, the robot of the introduction
+without payload.
 """
 from .errors import NonFiniteError, ScaraError, ShapeError, UnreachableError, UnstableError
 from .params import ScaraParams

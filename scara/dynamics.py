@@ -1,4 +1,4 @@
-"""Dynamic model of the SCARA arm with its motors and payload (SPEC section 3).
+"""Dynamic model of the SCARA arm with its motors and payload (chapter 5).
 
     B(q) qdd + C(q, qd) qd + F qd + g(q) = tau
 
@@ -12,8 +12,8 @@ Two layers
 ----------
 *Compiled kernels* (``*_kernel``) take floats and float arrays only and write into arrays passed by the
 caller; compiled loops (the simulation engine, controllers) call them with no Python objects. Every kernel
-reads the robot from one flat float array ``dp = dynamic_array(p)`` that holds the SPEC section 1 numbers in
-this order (index constants ``DP_*`` are exported)::
+reads the robot from one flat float array ``dp = dynamic_array(p)`` that holds the robot's data (the table of
+the introduction) in this order (index constants ``DP_*`` are exported)::
 
     0 d0   1 a1   2 a2   3 l1   4 l2   5 m_l1   6 m_l2   7 m_l3   8 I_l1   9 I_l2   10 I_l4
     11..14 k_r1..k_r4    15..18 I_m1..I_m4    19..22 F_m1..F_m4    23 m_L    24 g0
@@ -21,7 +21,7 @@ this order (index constants ``DP_*`` are exported)::
 A controller that holds a wrong model (e.g. no payload) simply passes its own ``dynamic_array``.
 
 *Public functions* (``inertia``, ``coriolis``, ...) check their inputs, take an optional
-:class:`~scara.ScaraParams` (``None`` is the robot of SPEC section 1) and return new arrays.
+:class:`~scara.ScaraParams` (``None`` is the robot of the introduction, without payload) and return new arrays.
 """
 from __future__ import annotations
 
@@ -64,8 +64,8 @@ DP_NAMES = ("d0", "a1", "a2", "l1", "l2", "m_l1", "m_l2", "m_l3", "I_l1", "I_l2"
 
 
 def dynamic_array(p: ScaraParams | None = None) -> np.ndarray:
-    """The SPEC section 1 numbers of ``p`` as one flat float array of shape ``(25,)``, in the order of
-    :data:`DP_NAMES` (see the module docstring): the form every compiled dynamics kernel takes.
+    """The robot's data in ``p`` (the table of the introduction) as one flat float array of shape ``(25,)``, in
+    the order of :data:`DP_NAMES`: the form every compiled dynamics kernel takes.
 
     >>> dynamic_array()[[1, 7, 23, 24]]
     array([ 0.5 , 10.  ,  0.  ,  9.81])
@@ -78,8 +78,9 @@ def dynamic_array(p: ScaraParams | None = None) -> np.ndarray:
 # --------------------------------------------------------------------------------------------------
 # the parameter vector pi of the linear-in-parameters model
 # --------------------------------------------------------------------------------------------------
-#: Entries of ``pi`` (SPEC section 3, linear parametrisation). ``beta_ij`` is the constant part of ``B_ij``
-#: (everything in ``B_ij`` that does not multiply ``m3`` or ``m_l2 l2``).
+#: Names of the 13 dynamic parameters in ``pi``, in order, for the regressor form ``Y pi`` of chapter 5.
+#: ``beta_ij`` is the constant part of ``B_ij`` (everything in ``B_ij`` that does not multiply ``m3`` or
+#: ``m_l2 l2``); ``F1`` to ``F4`` are the joints' viscous friction. Units: :data:`PI_UNITS`.
 PI_NAMES = ("m3", "m_l2 l2", "beta11", "beta12", "beta22", "beta13", "beta33", "beta14", "beta44",
             "F1", "F2", "F3", "F4")
 PI_UNITS = ("kg", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m", "kg", "kg m^2", "kg m^2",
@@ -132,7 +133,7 @@ def pi_kernel(dp, out):
 # --------------------------------------------------------------------------------------------------
 @kernel
 def inertia_kernel(q, dp, out):
-    """Inertia matrix ``B(q)`` (SPEC section 3) written into ``out`` (4, 4).
+    """Inertia matrix ``B(q)`` (chapter 5) written into ``out`` (4, 4).
 
     With ``b = a1 (m_l2 l2 + m3 a2)``: ``B11 = beta11 + m3 (a1^2 + a2^2) + 2 b c2``,
     ``B12 = beta12 + m3 a2^2 + b c2``, ``B22 = beta22 + m3 a2^2``, ``B13 = B23 = beta13``,
@@ -208,7 +209,7 @@ def coriolis_vector_kernel(q, qd, v, dp, out):
 
 @kernel
 def gravity_kernel(q, dp, out):
-    """Gravity torques ``g(q) = [0, 0, -m3 g0, 0]`` (SPEC section 3) written into ``out`` (4,)."""
+    """Gravity torques ``g(q) = [0, 0, -m3 g0, 0]`` (chapter 5) written into ``out`` (4,)."""
     out[0] = 0.0
     out[1] = 0.0
     out[2] = -(dp[DP_ML3] + dp[DP_ML]) * dp[DP_G0]
@@ -355,7 +356,7 @@ def forward_dynamics_scalar(q2, v1, v2, v3, v4, t1, t2, t3, t4, dp):
     s2 = math.sin(q2)
     j2 = dp[DP_IL2] + ml2 * l2 * l2
     b = a1 * (ml2 * l2 + m3 * a2)
-    # B (SPEC section 3)
+    # B (chapter 5)
     B11 = (dp[DP_IL1] + dp[DP_ML1] * l1 * l1 + kr1 * kr1 * im1 + j2 + ml2 * a1 * a1 + il4 + im2 + im3 + im4
            + m3 * (a1 * a1 + a2 * a2) + 2.0 * b * c2)
     B12 = j2 + il4 + kr2 * im2 + im3 + im4 + m3 * a2 * a2 + b * c2
@@ -506,7 +507,7 @@ def _vec(value, name):
 
 
 def inertia(q, p: ScaraParams | None = None) -> np.ndarray:
-    """Inertia matrix ``B(q)`` of the arm with rotors and payload (SPEC section 3), shape (4, 4).
+    """Inertia matrix ``B(q)`` of the arm with rotors and payload (chapter 5), shape (4, 4).
 
     Units: kg m^2 for the revolute entries, kg for ``B33``, kg m for ``B13``/``B23``. Raises
     :class:`~scara.ShapeError` / :class:`~scara.NonFiniteError` for a bad ``q``.
@@ -544,7 +545,7 @@ def gravity(q, p: ScaraParams | None = None) -> np.ndarray:
 
 
 def friction(p: ScaraParams | None = None) -> np.ndarray:
-    """Viscous friction matrix ``F = diag(k_ri^2 F_mi)`` at the joints (SPEC section 3), shape (4, 4).
+    """Viscous friction matrix ``F = diag(k_ri^2 F_mi)`` at the joints (chapter 5), shape (4, 4).
 
     >>> np.diag(friction())
     array([5.e-05, 5.e-05, 2.5e+01, 2.e+00])
@@ -553,7 +554,7 @@ def friction(p: ScaraParams | None = None) -> np.ndarray:
 
 
 def inverse_dynamics(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
-    """Joint torques ``tau = B(q) qdd + C(q, qd) qd + F qd + g(q)`` (SPEC section 3).
+    """Joint torques ``tau = B(q) qdd + C(q, qd) qd + F qd + g(q)``: the model of chapter 5.
 
     ``q``, ``qd``, ``qdd`` have shape (4,) or all (N, 4) (a time series; the result then has shape (N, 4)).
     """
@@ -694,7 +695,7 @@ def params_from_pi(pi, base: ScaraParams | None = None, rtol: float = 1e-9) -> S
 
 
 def kinetic_energy(q, qd, p: ScaraParams | None = None):
-    """Kinetic energy ``T = qd^T B(q) qd / 2`` (J) of links, quill, payload and rotors.
+    """Kinetic energy ``qd^T B(q) qd / 2`` (J) of links, quill, payload and rotors.
 
     ``q``, ``qd`` of shape (4,) give a float; (N, 4) series give shape (N,).
     """
@@ -718,8 +719,8 @@ def _kinetic_batch(q, qd, dp, work, out):
 
 
 def potential_energy(q, p: ScaraParams | None = None):
-    """Gravitational potential energy ``U(q)`` (J), zero at the base-frame floor (see
-    :func:`potential_energy_kernel`); shape (4,) gives a float, (N, 4) gives (N,)."""
+    """Gravitational potential energy ``U(q)`` (J) of chapter 5, zero at the base-frame floor; shape (4,) gives
+    a float, (N, 4) gives (N,)."""
     p = _params(p)
     q = as_array(q, "q", (4,), allow_batch=True)
     u = p.g0 * ((p.m_l1 + p.m_l2) * p.d0 + p.m3 * (p.d0 - q[..., 2]))
@@ -727,7 +728,7 @@ def potential_energy(q, p: ScaraParams | None = None):
 
 
 def total_energy(q, qd, p: ScaraParams | None = None):
-    """``T + U`` (J): :func:`kinetic_energy` plus :func:`potential_energy`."""
+    """Total energy (J), kinetic plus potential: :func:`kinetic_energy` plus :func:`potential_energy`."""
     return kinetic_energy(q, qd, p) + potential_energy(q, p)
 
 

@@ -1,5 +1,5 @@
 """The closed-loop simulation engine: a discrete-time controller at ``dt`` (zero-order hold) driving the
-continuous-time plant ``B qdd + C qd + F qd + g = tau`` (SPEC section 3), integrated by fixed-step RK4.
+continuous-time plant ``B qdd + C qd + F qd + g = tau`` (the model of chapter 5), integrated by fixed-step RK4.
 
     result = simulate(controller, traj, plant, dt=1e-3, substeps=1)
 
@@ -116,7 +116,7 @@ OK, LAW_FAILED, DIVERGED, SINGULAR_INERTIA = 0, 1, 2, 3
 def _plant_constants(dp):
     """The constant part of the plant's ``B`` and right-hand side, from the flat array ``dp`` (once per run).
 
-    SPEC section 3: only ``B11 = beta11 + 2 b cos theta2`` and ``B12 = beta12 + b cos theta2`` depend on the
+    In chapter 5's model only ``B11 = beta11 + 2 b cos theta2`` and ``B12 = beta12 + b cos theta2`` depend on the
     state (``b = a1 (m_l2 l2 + m3 a2)``); the rest of ``B`` is constant, with ``B23 = B13``, ``B24 = B14``,
     ``B34 = 0``, so the lower-right block ``D = diag(B33, B44)`` is diagonal. Eliminating ``qdd3``, ``qdd4``
     leaves the Schur complement ``S = B_12block - c [[1, 1], [1, 1]]``, ``c = B13^2 / B33 + B14^2 / B44``,
@@ -166,7 +166,7 @@ def _plant_constants(dp):
 
 @kernel
 def _plant_acceleration(c2, s2, v1, v2, v3, v4, t1, t2, t3, t4, pc):
-    """``qdd = B^-1 (tau - C qd - F qd - g)`` (SPEC section 3) in scalars: ``(qdd1, qdd2, qdd3, qdd4, code)``.
+    """``qdd = B^-1 (tau - C qd - F qd - g)`` (chapter 5) in scalars: ``(qdd1, qdd2, qdd3, qdd4, code)``.
 
     ``c2, s2`` are ``cos theta2, sin theta2`` (the only configuration ``B`` and ``C`` depend on), ``pc`` the
     tuple of :func:`_plant_constants`. With ``r = tau - C qd - F qd - g``, the last two rows give
@@ -348,7 +348,7 @@ def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, 
 # controllers
 # --------------------------------------------------------------------------------------------------
 class Controller:
-    """Base class of the engine's controllers (see the module docstring for the interface).
+    """Base class of the controllers that :func:`simulate` runs (chapter 5; interface: ``help(scara.simulate)``).
 
     Subclasses set ``law`` (a :func:`control_law` kernel), ``reference_kind``, ``signal_names``,
     ``work_rows`` and ``name``, and override :meth:`gains_array` (and :meth:`initial_state` when they keep
@@ -412,7 +412,7 @@ def _diag_gain(value, name):
 
 
 class PDGravityController(Controller):
-    """PD control with gravity compensation in joint space (Siciliano et al. sec. 8.5.2).
+    """PD control with gravity compensation in joint space (chapter 5; Siciliano et al., sec. 8.5.1).
 
     ``tau = K_P (q_d - q) + K_D (qd_d - qd) + g_hat(q)``, with ``g_hat`` from ``model`` (default
     ``ScaraParams()``: no payload). Held at a set point, the loop settles where ``K_P e = g(q) - g_hat(q)``:
@@ -561,7 +561,7 @@ def _operational_kernel(ref, a1, a2, d0, out):
 
 @kernel
 def _pose_error(q, x_d, a1, a2, d0, x, e):
-    """``x[k] = k(q[k])`` (SPEC section 2) and ``e[k] = x_d[k] - x[k]`` for every sample, in one pass."""
+    """``x[k] = k(q[k])`` (chapter 1) and ``e[k] = x_d[k] - x[k]`` for every sample, in one pass."""
     for k in range(q.shape[0]):
         q1 = q[k, 0]
         t12 = q1 + q[k, 1]
@@ -670,7 +670,7 @@ class SimulationResult:
 def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float | None = None, *,
              joint_reference=None, q0=None, qd0=None, substeps: int = 1, duration: float | None = None,
              elbow: int = -1, limit: float = 1e6) -> SimulationResult:
-    """Run ``controller`` in closed loop on ``plant`` along ``traj`` (see the module docstring).
+    """Run ``controller`` in closed loop on ``plant`` along ``traj``: the simulation engine of chapter 5.
 
     Parameters
     ----------

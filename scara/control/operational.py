@@ -1,5 +1,5 @@
-"""Inverse dynamics control in the operational space, with integral action (Siciliano et al., sec. 8.6.2),
-discrete-time at the sampling period.
+"""Inverse dynamics control in the operational space, with integral action (chapter 6; Siciliano et al.,
+sec. 8.6.3), discrete-time at the sampling period.
 
     xt = x_d - x_e(q),   xt_dot = xd_d - J_A(q) qd,   s_k = dt sum_{j<k} xt_j   (the integral, forward Euler)
     y = J_A^-1 (xdd_d + K_D xt_dot + K_P xt + K_I s - Jdot_A qd)
@@ -7,7 +7,7 @@ discrete-time at the sampling period.
 
 ``B_hat``, ``C_hat``, ``g_hat`` come from the controller's own model, which does not know the payload. With
 ``K_I = 0`` (``integral=False``) the uncompensated weight ``m_L g0`` leaves, at rest, the vertical error
-``xt_z = m_L g0 / (B33_hat K_P,z)`` (SPEC section 5); the integral removes it.
+``xt_z = m_L g0 / (B33_hat K_P,z)`` (chapter 6); the integral removes it.
 """
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     """Operational-space inverse dynamics step (module docstring). ``ref = [x_d, xd_d, xdd_d]``; ``state`` is
     the integral ``s`` (4,) of the error, updated after ``u`` is formed.
 
-    The kinematics of SPEC section 2 are written out once here (one sine and cosine each of ``theta1``,
+    The kinematics of chapter 1 are written out once here (one sine and cosine each of ``theta1``,
     ``theta1 + theta2``): ``x_e``, ``J_A qd``, ``Jdot_A qd = [-(a1 c1 w1^2 + a2 c12 w12^2), a1 s1 w1^2 + a2 s12
     w12^2, 0, 0]`` (``w1 = qd1``, ``w12 = qd1 + qd2``), and ``J_A y = a`` is solved by its block structure: the
     planar 2x2 block (determinant ``-a1 a2 sin theta2``) for ``y1, y2``, then ``y3 = -a_z`` and
@@ -112,8 +112,8 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
 
 
 class OperationalSpaceController(BoundedController):
-    """Operational-space inverse dynamics control with (``integral=True``) or without integral action
-    (module docstring). Tracks the operational reference ``[x_d, xd_d, xdd_d]`` directly.
+    """Operational-space inverse dynamics control with (``integral=True``) or without integral action, the
+    last controller of chapter 6. Tracks the operational reference ``[x_d, xd_d, xdd_d]`` directly.
 
     Parameters
     ----------
