@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from .. import _compile
-from ..errors import ScaraError, ShapeError, UnstableError, as_array
+from ..errors import ScaraError, ShapeError, UnstableError
 from ..params import ScaraParams
 from ..simulate import LAW_SIGNATURE, Controller
 

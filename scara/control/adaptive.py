@@ -11,7 +11,6 @@ model (no payload), and the payload estimate ``pi_hat[0] - m_l3`` is recorded at
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 

@@ -19,12 +19,12 @@ import math
 import numpy as np
 import scipy.linalg
 
-from ..dynamics import DP_FM, DP_KR, dynamic_array, gravity_kernel, inertia
-from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
+from ..dynamics import DP_FM, DP_KR, gravity_kernel, inertia
+from ..errors import ScaraError, UnstableError, as_array, check_positive
 from ..kinematics import _params
 from ..params import ScaraParams
 from ..simulate import control_law
-from ._common import ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains
+from ._common import BoundedController, positive_gains
 
 __all__ = ["RobustController", "sliding_weight", "lyapunov_matrix", "sliding_matrix", "inertia_uncertainty",
            "inertia_eigenvalues",

@@ -19,7 +19,7 @@ from plotly.subplots import make_subplots
 from ..errors import ScaraError
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
 from .clik import envelope, thin
-from .kinematics import _layout, finish_layout, legend_entries, legend_rows
+from .kinematics import _layout, finish_layout
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",

@@ -21,7 +21,7 @@ from ..errors import ScaraError, as_array, as_vector, check_positive
 from ..kinematics import _params, ikine
 from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, slider
-from .kinematics import _as_list, _circle, _layout, finish_layout, top_view_arm
+from .kinematics import _as_list, _circle, finish_layout, top_view_arm
 
 __all__ = [
     "REFERENCE_CONFIGURATIONS",
