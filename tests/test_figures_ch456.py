@@ -12,6 +12,7 @@ import pytest
 
 import scara
 from scara import plots
+from scara.clik import SEED_K
 from scara.dynamics import torque_breakdown
 from scara.plots.control import CONTROLLER_LABELS, CONTROLLER_DASHES
 
@@ -33,7 +34,7 @@ def figures():
     inv = runs["inverse"]
     stab = scara.transpose_stability(tr)
     near = scara.plan_path([[-0.2, 0.002, 0.5], [0.2, 0.002, 0.5]], durations=[3.0], total=3.5)
-    below = scara.clik(tr, "transpose", 0.98 * stab.scale_limit * np.asarray(scara.clik.__globals__["SEED_K"]))
+    below = scara.clik(tr, "transpose", 0.98 * stab.scale_limit * np.asarray(SEED_K))
     figs = {
         "clik_joints": plots.clik_joints_figure(runs),
         "clik_convergence": plots.convergence_figure(

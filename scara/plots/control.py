@@ -19,7 +19,7 @@ from plotly.subplots import make_subplots
 from ..errors import ScaraError
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
 from .clik import envelope, thin
-from .kinematics import _layout, finish_layout
+from .kinematics import finish_layout
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
@@ -363,7 +363,7 @@ def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, he
     s = summary
     head = (f"{_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
             f"{1e3 * s['final_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
-    fig.update_layout(**_layout(head + (f"<br>{extra}" if extra else ""), height, legend_rows=2))
+    finish_layout(fig, head + (f"<br>{extra}" if extra else ""), height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
     fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)
     fig.update_yaxes(title_text="τ (N m)", row=2, col=1, secondary_y=True)

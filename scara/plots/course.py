@@ -70,10 +70,9 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
                               args=[{"x": [_r(trail[:, 0]), _r(a[:, 0])], "y": [_r(trail[:, 1]), _r(a[:, 1])],
                                      "z": [_r(trail[:, 2]), _r(a[:, 2])]},
                                     {"title.text": _title(t, traj, i)}, [trail_index, arm_index]]))
-    step_list[0]["args"][0]["x"][0] = [traj.x[0, 0]]
     lo, hi = _box(np.vstack([traj.x[k, :3], *arms, [[0.0, 0.0, 0.0]]]))
     span = hi - lo
-    scene = dict(xaxis=dict(title="x (m)", range=_r(lo[0:1].tolist() + hi[0:1].tolist(), 3)),
+    scene = dict(xaxis=dict(title="x (m)", range=_r([lo[0], hi[0]], 3)),
                  yaxis=dict(title="y (m)", range=_r([lo[1], hi[1]], 3)),
                  zaxis=dict(title="z (m)", range=_r([0.0, hi[2]], 3)),
                  aspectmode="manual",

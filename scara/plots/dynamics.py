@@ -11,7 +11,7 @@ from plotly.subplots import make_subplots
 from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError
 from ..kinematics import _params
-from ._common import DASHES, JOINT_COLOURS, base_layout, slider
+from ._common import DASHES, JOINT_COLOURS, slider
 from .kinematics import finish_layout
 
 __all__ = [
@@ -49,12 +49,6 @@ def decimate(n: int, target: int = 2000) -> np.ndarray:
 def _f32(a):
     """Float32 copy for plotting: halves the figure's payload; 7 significant digits are plenty on screen."""
     return np.asarray(a, dtype=np.float32)
-
-
-def _legend_below(fig, height, offset=70):
-    """Put the legend under the plot (below the x-axis title) so that it never covers a title."""
-    fig.update_layout(legend=dict(orientation="h", yanchor="top", y=-offset / height, xanchor="left", x=0),
-                      margin=dict(l=60, r=20, t=70, b=offset + 70))
 
 
 def _rms(a):
@@ -233,6 +227,5 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
                     marker_color=TERM_COLOURS[k], row=1, col=2)
     fig.update_xaxes(title_text="kg m² (B33: kg)", row=1, col=2)
     fig.update_yaxes(autorange="reversed", row=1, col=2)
-    fig.update_layout(**base_layout(title, 460), barmode="stack")
-    _legend_below(fig, 460, offset=60)
+    finish_layout(fig, title, 460, subplot_titles=True, barmode="stack")
     return fig

@@ -83,20 +83,6 @@ def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
     return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels}
 
 
-def _layout(title: str, height: int, legend_rows: int = 1, subplot_titles: bool = False, **kw) -> dict:
-    """:func:`base_layout` with room at the top for a (possibly two-line) title and ``legend_rows`` rows of
-    legend, so that neither overlaps the other nor the subplot titles."""
-    title_px = 30 + 18 * title.count("<br>")
-    legend_px = 22 * legend_rows
-    top = 20 + title_px + legend_px + (28 if subplot_titles else 8)
-    lay = base_layout(title, height, **kw)
-    lay["title"].update(y=1.0 - 18 / height, yanchor="top", yref="container")
-    lay["legend"] = dict(orientation="h", xanchor="left", x=0.0, yref="container", yanchor="top",
-                         y=1.0 - (16 + title_px) / height)
-    lay["margin"] = dict(lay["margin"], t=top)
-    return lay
-
-
 #: plot-area width (px) left on a 360-px phone page between the axis margins (227 to 232 px measured in the built
 #: book); legends are sized for it
 PHONE_PLOT_WIDTH = 230

@@ -13,7 +13,7 @@ from ..clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
 from ..kinematics import _params
 from ..plots.clik import METHOD_LABELS, _label, envelope, thin
 from ..plots._common import PALETTE
-from ..plots.kinematics import _layout
+from ..plots.kinematics import finish_layout
 from ._common import LivePanel
 from .kinematics import _table
 
@@ -72,8 +72,8 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
         fig.add_trace(dict(type="scatter", x=r.t[idx], y=r.w[idx], mode="lines", name="w", showlegend=False,
                            line=dict(color=colour, width=1.5)), row=3, col=1)
         s = r.summary()
-        fig.update_layout(**_layout(f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = "
-                                    f"{s['max_position_error'] * 1e3:.4g} mm", 620))
+        finish_layout(fig, f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = "
+                           f"{s['max_position_error'] * 1e3:.4g} mm", 620)
         fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
         fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
         fig.update_yaxes(title_text="w (m²)", row=3, col=1)

@@ -10,7 +10,7 @@ import plotly.graph_objects as go
 from ..errors import as_vector, check_positive
 from ..kinematics import _params
 from ..manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
-from ..plots.kinematics import _layout
+from ..plots.kinematics import finish_layout
 from ..plots.manipulability import ellipse_traces
 from ._common import LivePanel
 from .kinematics import _table
@@ -39,7 +39,7 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
         q = as_vector([math.radians(theta1), math.radians(theta2), 0.5 * p.d0, 0.0], "q")
         sc = check_positive(scale, "ellipse scale")
         fig = go.Figure(ellipse_traces(q, p, sc, sc, axes=True))
-        fig.update_layout(**_layout(f"θ1 = {theta1:.0f}°, θ2 = {theta2:.0f}°: w = {manipulability(q, p):.3f} m²", 520))
+        finish_layout(fig, f"θ1 = {theta1:.0f}°, θ2 = {theta2:.0f}°: w = {manipulability(q, p):.3f} m²", 520)
         reach = p.r_max + 0.2
         fig.update_xaxes(title_text="x (m)", range=[-reach, reach], constrain="domain")
         fig.update_yaxes(title_text="y (m)", range=[-reach, reach], scaleanchor="x", scaleratio=1)
