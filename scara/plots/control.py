@@ -81,10 +81,6 @@ def _line(x, y, name, colour, width=1.5, dash=None, showlegend=True, legendgroup
                       line=dict(color=colour, width=width, dash=dash), **kw)
 
 
-def _two_lines(head: str, label: str) -> str:
-    return f"{head}<br>{label}"
-
-
 def joint_motion_figure(results, points: int = 350, title: str | None = None, height: int = 760) -> go.Figure:
     """Joint motion of each run, one run at a time (dropdown), in four stacked panels sharing the time axis:
     the revolute joints ``θ1, θ2, θ4`` (rad), the quill ``d3`` (m), the joint velocities (rad/s and m/s) and
@@ -109,7 +105,7 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
             fig.add_trace(_line(r.t[idx], r.qdd[idx, j], f"{_JOINTS[j]} acceleration · {label}", showlegend=False,
                                 **style), row=4, col=1)
         groups.append(list(range(start, len(fig.data))))
-        menu.append((label, _two_lines(head, label)))
+        menu.append((label, f"{head}<br>{label}"))
         late = r.t >= min(0.05, r.t[-1])
         lo, hi = float(r.qdd[late].min()), float(r.qdd[late].max())
         pad = 0.1 * max(hi - lo, 1e-9)
@@ -147,7 +143,7 @@ def operational_error_figure(results, points: int = 600, title: str | None = Non
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
         fig.add_trace(_line(tt, yy, "‖e_p‖", _colour(r), width=2, dash=_dash(r)), row=2, col=1)
         groups.append(list(range(start, len(fig.data))))
-        menu.append((label, _two_lines(head, label)))
+        menu.append((label, f"{head}<br>{label}"))
     finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
     fig.update_yaxes(title_text="e_x, e_y, e_z (mm)<br>e_φ (mrad)", row=1, col=1)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)

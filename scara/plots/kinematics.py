@@ -86,7 +86,6 @@ def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
 #: plot-area width (px) left on a 360-px phone page between the axis margins (227 to 232 px measured in the built
 #: book); legends are sized for it
 PHONE_PLOT_WIDTH = 230
-_LAPTOP_PLOT_WIDTH = 620
 _TITLE_SIZE = 15
 _LEGEND_SIZE = 12
 
