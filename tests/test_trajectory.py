@@ -535,3 +535,16 @@ def test_waypoint_editor_replans_and_reports_errors():
     assert ed.panel.last_error is None
     # the reference plan itself is untouched by the edits
     assert reference_plan()["waypoints"][7].position == (0.70, 0.15, 0.3)
+
+
+def test_via_point_out_of_reach_is_refused_even_when_its_corner_is_not():
+    """A via point's corner is cut, so the sampled path can stay in reach while the point itself is not: the
+    planner still refuses the point, naming it."""
+    from scara import UnreachableError, plan_path, reference_plan
+
+    plan = reference_plan()
+    plan["waypoints"][8] = plan["waypoints"][8].replace(position=(0.99, 0.2, 0.5))
+    raw = plan_path(**plan, check=False)
+    assert np.hypot(raw.x[:, 0], raw.x[:, 1]).max() <= 1.0  # the rounded corner stays inside
+    with pytest.raises(UnreachableError, match=r"waypoint p8 x = \[0\.99 +0\.2 +0\.5 *\] is unreachable"):
+        plan_path(**plan)

@@ -215,12 +215,21 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     d_pay = np.diag(B) - np.diag(inertia(q, bare))
     fig = make_subplots(rows=1, cols=2, column_widths=[0.5, 0.5], horizontal_spacing=0.14,
                         subplot_titles=["B(q) (kg m², kg m, kg)", "diagonal of B: what it is made of"])
-    labels = ["1", "2", "3", "4"]
-    fig.add_heatmap(z=np.log10(np.abs(B) + 1e-3), x=labels, y=labels, text=[[f"{v:.3g}" for v in row] for row in B],
-                    texttemplate="%{text}", colorscale="Blues", showscale=False,
-                    hovertemplate="B[%{y},%{x}] = %{text}<extra></extra>", row=1, col=1)
-    fig.update_yaxes(autorange="reversed", title_text="row", row=1, col=1)
-    fig.update_xaxes(title_text="column", row=1, col=1)
+    # B as a grid of shaded squares (a scatter, not a heat map, so that a live panel can update it in place)
+    rows, cols = np.indices(B.shape)
+    shade = np.log10(np.abs(B) + 1e-3).ravel()
+    dark = shade > shade.min() + 0.6 * (shade.max() - shade.min())
+    fig.add_scatter(x=(cols + 1).ravel(), y=(rows + 1).ravel(), mode="markers+text", name="B(q)", showlegend=False,
+                    text=[f"{v:.3g}" for v in B.ravel()], textfont=dict(color=np.where(dark, "white", "#222222").tolist(),
+                                                                       size=11),
+                    marker=dict(symbol="square", size=44, color=shade, colorscale="Blues", cmin=-3.0,
+                                cmax=float(max(shade.max(), 0.0)), line=dict(width=1, color="#cccccc")),
+                    customdata=[f"B[{i + 1},{j + 1}]" for i, j in zip(rows.ravel(), cols.ravel())],
+                    hovertemplate="%{customdata} = %{text}<extra></extra>", row=1, col=1)
+    fig.update_yaxes(autorange="reversed", title_text="row", tickvals=[1, 2, 3, 4], range=[4.6, 0.4],
+                     showgrid=False, zeroline=False, row=1, col=1)
+    fig.update_xaxes(title_text="column", tickvals=[1, 2, 3, 4], range=[0.4, 4.6], showgrid=False, zeroline=False,
+                     row=1, col=1)
     names = [f"B{i}{i}" for i in range(1, 5)]
     for k, v in (("links", d_links), ("rotors", d_rot), ("payload", d_pay)):
         fig.add_bar(y=names, x=v, orientation="h", name=TERM_LABELS[k].replace(" (5 kg)", ""),

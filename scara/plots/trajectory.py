@@ -38,7 +38,9 @@ _VIA_LINE = dict(color=PALETTE["reference"], dash="solid")
 
 
 def _r(values, digits=5):
-    return np.round(np.asarray(values, dtype=float), digits).tolist()
+    """Rounded float32 values for drawing: light pages (plotly stores arrays in binary) and fast figures
+    (plotly validates an array at once, a list item by item); 7 significant digits are plenty on screen."""
+    return np.round(np.asarray(values, dtype=float), digits).astype(np.float32)
 
 
 def _check(traj):

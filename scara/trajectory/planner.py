@@ -339,7 +339,8 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
         ``total`` that are not whole numbers of samples; ``total`` shorter than the motion; an arc whose ends
         are not on its circle or are not the segment's waypoints.
     UnreachableError
-        A sample leaves the workspace: the message names the first such time, point and segment.
+        A sample leaves the workspace: the message names the first such time, point and segment; or a via
+        point lies out of reach although its rounded corner does not (the message names the waypoint).
 
     >>> traj = plan_path([[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]], durations=[2.0], total=3.0)
     >>> traj.t.shape, traj.x.shape, float(traj.x[-1, 0])
@@ -474,4 +475,8 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
                 why = f": {exc}"
             raise UnreachableError(f"the path leaves the workspace at t = {tk:.3f} s (sample {k}) on segment "
                                    f"{traj._segment_names(tk)}{why}")
+        # a via point's corner is rounded, so the path may stay in reach while the point itself is not: the
+        # planner still refuses it (the arm is asked to pass near a point it could never reach)
+        for i, point in enumerate(pos):
+            check_reachable(point, p_checked, label=f"waypoint {labels[i]}")
     return traj

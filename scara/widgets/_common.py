@@ -1,59 +1,324 @@
-"""Shared machinery for live panels: an output area that shows a figure or a clear message."""
+"""Shared machinery for live panels: controls, a message line, figures that redraw in place, a table.
+
+A panel is built from two functions of the control values:
+
+* ``compute(**values)`` does the robotics (the compiled code) and returns whatever ``draw`` needs; it raises
+  :class:`~scara.errors.ScaraError` for a setting the package refuses;
+* ``draw(state)`` turns that into :class:`PanelView`: the figures (``plotly.graph_objects.Figure``, built by the
+  same :mod:`scara.plots` builders as the book's static figures) and an HTML table.
+
+The figures are shown as plotly ``FigureWidget`` objects created once, when the panel is built. On every change
+the new figures are compared with the previous ones and only what differs (a trace's ``x``/``y``/``z``, a
+title, an axis, the annotations) is sent to the browser, in one ``batch_update`` per figure, so that one move
+redraws each figure once and nothing is ever displayed outside the panel. A refused setting shows its message
+and marks every figure *stale* (its traces hidden, its title saying why) until a valid setting is made again.
+"""
 from __future__ import annotations
 
 import html
+import json
+import math
+import re
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 
 import ipywidgets as ipw
+import numpy as np
 import plotly.graph_objects as go
-from IPython.display import HTML, display
+from IPython.display import display
 
 from ..errors import ScaraError
+from ..plots._common import without_template
 
-__all__ = ["LivePanel"]
+__all__ = ["LivePanel", "PanelView", "table", "readable", "start_value", "STALE_TITLE"]
+
+#: the title a figure shows while the controls describe a setting that was refused
+STALE_TITLE = "Not current: this setting was refused (see the message above)"
+
+#: style shared by every panel: a stale figure is greyed out as well as emptied
+_STYLE = """<style>
+.scara-panel .scara-stale {opacity: 0.35; filter: grayscale(1);}
+.scara-panel .scara-panel-message {color: #B00020; padding: 4px 0;}
+.scara-panel .scara-panel-note {color: #8a5a00; padding: 4px 0;}
+.scara-panel table.scara-panel-table td {padding: 2px 10px;}
+</style>"""
+
+
+@dataclass
+class PanelView:
+    """What a panel shows for one valid setting: its figures, an HTML table below them, and notes (plain
+    text) that flag a boundary case the numbers alone would hide."""
+
+    figures: list
+    table: str = ""
+    notes: list = field(default_factory=list)
+
+
+def table(rows) -> str:
+    """An HTML table of ``(label, value)`` pairs of plain text (escaped here)."""
+    body = "".join(f"<tr><td>{html.escape(str(a))}</td><td><b>{html.escape(str(b))}</b></td></tr>"
+                   for a, b in rows)
+    return f"<table class='scara-panel-table' style='font-family:monospace'>{body}</table>"
+
+
+_POINT = re.compile(r"\bx = \[\s*([^\]]*?)\s*\]")
+
+
+def readable(message: str) -> str:
+    """A package message in a panel's units: a point printed as an array, ``x = [px py pz phi]`` (m and rad),
+    becomes ``(x, y, z) = (px, py, pz) m, φ = ...°``."""
+
+    def point(match):
+        try:
+            v = [float(t) for t in match.group(1).replace(",", " ").split()]
+        except ValueError:
+            return match.group(0)
+        if len(v) not in (3, 4):
+            return match.group(0)
+        text = f"(x, y, z) = ({v[0]:.4g}, {v[1]:.4g}, {v[2]:.4g}) m"
+        return text + (f", φ = {math.degrees(v[3]):.4g}°" if len(v) == 4 else "")
+
+    return _POINT.sub(point, message)
+
+
+def _same(a, b) -> bool:
+    """Deep equality of plotly JSON values (dicts, lists, tuples, numpy arrays, numbers, strings)."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        try:
+            a_arr, b_arr = np.asarray(a), np.asarray(b)
+        except (TypeError, ValueError):
+            return False
+        if a_arr.shape != b_arr.shape or a_arr.dtype.kind != b_arr.dtype.kind:
+            return False
+        if a_arr.dtype.kind == "f":
+            return bool(np.array_equal(a_arr, b_arr, equal_nan=True))
+        return bool(np.array_equal(a_arr, b_arr))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if type(a) is not type(b) and not (isinstance(a, (int, float)) and isinstance(b, (int, float))):
+        return False
+    return a == b or (a != a and b != b)  # NaN equals NaN here
+
+
+def _delta(old: dict, new: dict, keep=()) -> dict:
+    """The top-level properties of ``new`` that differ from ``old``; properties ``old`` had and ``new`` has
+    not are reset (``None``), except those named in ``keep``."""
+    out = {k: v for k, v in new.items() if k not in old or not _same(old[k], v)}
+    out.update({k: None for k in old if k not in new and k not in keep})
+    return out
+
+
+def _widget_safe(value):
+    """``value`` with every float array other than float64 made float64. plotly's FigureWidget (7.1) reads a
+    float32 array echoed back by the browser as a dict and fails on it (``ValueError: The truth value of an
+    array ... is ambiguous`` in ``_remove_overlapping_props``, sent to the Log Console on every update)."""
+    if isinstance(value, np.ndarray):
+        return value.astype(np.float64) if value.dtype.kind == "f" and value.dtype != np.float64 else value
+    if isinstance(value, dict):
+        return {k: _widget_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(_widget_safe(v) for v in value)
+    return value
+
+
+def _structure(state: dict) -> list:
+    return [t.get("type", "scatter") for t in state["data"]]
 
 
 class LivePanel:
-    """Controls plus an output area; ``render()`` (a function of the control values returning a figure or a
-    list of figures) is re-run on every change. A :class:`ScaraError` (or any ``ValueError``) is shown as a
-    message in place of the plot."""
+    """Controls, a message line, figures redrawn in place and a table (see the module's docstring).
 
-    def __init__(self, controls: dict, render, title: str = "", columns: int = 2):
+    Parameters
+    ----------
+    controls : dict
+        Name -> ipywidget; ``compute`` is called with the widgets' values under these names.
+    compute, draw : callables
+        ``compute(**values) -> state`` and ``draw(state) -> PanelView``.
+    title : str
+        A heading shown above the controls.
+    columns : int
+        Controls per row.
+    explain : callable, optional
+        ``explain(exc, values) -> str``: the message shown for a refused setting, in the panel's own units
+        (default: the exception's text, points written as (x, y, z) in m and φ in degrees).
+    react : callable, optional
+        ``react(change)``, called on every change before the panel recomputes, while updates are held: it may
+        set other controls (e.g. load the values of the item a dropdown picked) and the panel still
+        recomputes and redraws once.
+
+    The initial values must be valid: a panel built on a refused setting raises that :class:`ScaraError`.
+    Attributes a test or a notebook may read: ``figures`` (the ``FigureWidget`` objects), ``last_error``
+    (the message shown, or None), ``state`` (the last valid computation), ``timings`` (seconds spent in
+    ``compute``, ``draw`` and sending the update, for the last change), ``redraws`` (figure updates sent so
+    far).
+    """
+
+    def __init__(self, controls: dict, compute, draw, title: str = "", columns: int = 2, explain=None,
+                 react=None):
         self.controls = controls
-        self.render = render
-        self.out = ipw.Output()
+        self.react = react
+        self.compute = compute
+        self.draw = draw
+        self.explain = explain or (lambda exc, values: readable(str(exc)))
         self.message = ipw.HTML()
+        self.message.add_class("scara-panel-message")
+        self.notes = ipw.HTML()
+        self.notes.add_class("scara-panel-note")
+        self.info = ipw.HTML()
+        self.last_error: str | None = None
+        self.redraws = 0
+        self.timings: dict = {}
+        self._holding = 0
+        self._stale = False
+        self._seq = 0
+
+        view = self._view(self.values(), first=True)  # raises for an invalid start: nothing silently clamped
+        self._states = [_widget_safe(f.to_plotly_json()) for f in view.figures]
+        self.figures = [go.FigureWidget(state) for state in self._states]
+        # each figure in a box of its own: the box carries the classes (a FigureWidget's own are not applied)
+        self._boxes = [ipw.Box([fw], layout=ipw.Layout(display="block")) for fw in self.figures]
+        for box in self._boxes:
+            box.add_class("scara-panel-figure")
+        self._show_text(view)
+
         for w in controls.values():
             w.observe(self._changed, names="value")
-        boxes = list(controls.values())
-        grid = ipw.GridBox(boxes, layout=ipw.Layout(grid_template_columns=f"repeat({columns}, minmax(0, 1fr))"))
-        head = [ipw.HTML(f"<b>{html.escape(title)}</b>")] if title else []
-        self.widget = ipw.VBox(head + [grid, self.message, self.out])
-        self.last_error: str | None = None
-        self.update()
+        grid = ipw.GridBox(list(controls.values()),
+                           layout=ipw.Layout(grid_template_columns=f"repeat({columns}, minmax(0, 1fr))"))
+        head = ipw.HTML(_STYLE + (f"<b>{html.escape(title)}</b>" if title else ""))
+        self.widget = ipw.VBox([head, grid, self.message, *self._boxes, self.notes, self.info])
+        self.widget.add_class("scara-panel")
 
+    # ------------------------------------------------------------------------------------------------------
     def values(self) -> dict:
+        """The controls' current values, by name."""
         return {k: w.value for k, w in self.controls.items()}
 
-    def _changed(self, _change):
-        self.update()
-
-    def update(self):
+    @contextmanager
+    def hold(self):
+        """Change several controls at once: the panel recomputes once, when the block ends."""
+        self._holding += 1
         try:
-            figs = self.render(**self.values())
-            self.last_error = None
-        except (ScaraError, ValueError) as exc:
-            self.last_error = str(exc)
-            self.message.value = f'<div style="color:#B00020;padding:6px 0"><b>Cannot show this setting:</b> {html.escape(str(exc))}</div>'
-            self.out.outputs = ()
+            yield self
+        finally:
+            self._holding -= 1
+        if not self._holding:
+            self.update()
+
+    def _changed(self, change):
+        if self._holding:
             return
+        if self.react is None:
+            self.update()
+            return
+        with self.hold():
+            self.react(change)
+
+    def _view(self, values, first: bool = False) -> PanelView:
+        t0 = time.perf_counter()
+        state = self.compute(**values)
+        t1 = time.perf_counter()
+        if first:
+            view = self.draw(state)
+        else:  # the template went with the first figure; only what changes is sent from now on
+            with without_template():
+                view = self.draw(state)
+        self.timings = {"compute": t1 - t0, "draw": time.perf_counter() - t1}
+        self.state = state
+        return view
+
+    def update(self) -> None:
+        """Recompute for the controls' values and redraw in place, or show why the setting is refused."""
+        values = self.values()
+        try:
+            view = self._view(values)
+        except ScaraError as exc:
+            self._refuse(self.explain(exc, values))
+            return
+        if len(view.figures) != len(self.figures):  # a programming error, not a student's
+            raise RuntimeError(f"the panel drew {len(view.figures)} figures, it shows {len(self.figures)}")
+        t0 = time.perf_counter()
+        for k, (fw, fig) in enumerate(zip(self.figures, view.figures)):
+            self._sync(k, fw, _widget_safe(fig.to_plotly_json()))
+        self.timings["send"] = time.perf_counter() - t0
+        self.last_error = None
+        self._stale = False
         self.message.value = ""
-        if isinstance(figs, go.Figure):
-            figs = [figs]
-        # Fill the output area directly rather than capturing with ``with self.out:``: under nbclient (the
-        # book build) the capture can wait on the kernel's own shell channel until the cell times out.
-        self.out.outputs = ()
-        for f in figs:
-            self.out.append_display_data(f if isinstance(f, go.Figure) else HTML(str(f)))
+        self._show_text(view)
+
+    def _values_html(self) -> str:
+        """The controls' values, as JSON in a hidden element, with the number of this update and its timings
+        (ms): what the figure was computed for, readable by a browser test without parsing rounded readouts."""
+        self._seq += 1
+        values = {k: (v if isinstance(v, (bool, int, float, str)) else str(v)) for k, v in self.values().items()}
+        state = dict(values=values, seq=self._seq, **{f"{k}_ms": 1e3 * v for k, v in self.timings.items()})
+        return f"<span hidden class='scara-panel-values'>{html.escape(json.dumps(state))}</span>"
+
+    def _show_text(self, view: PanelView) -> None:
+        self.info.value = view.table + self._values_html()
+        self.notes.value = "".join(f"<div>⚠ {html.escape(n)}</div>" for n in view.notes)
+
+    def _sync(self, k: int, fw, new: dict) -> None:
+        """Send the differences between the figure shown and ``new`` (a plotly JSON dict) in one update."""
+        old = self._states[k]
+        if "template" in old["layout"] and "template" not in new["layout"]:
+            new["layout"]["template"] = old["layout"]["template"]  # sent once, with the first figure
+        layout = _delta(old["layout"], new["layout"])
+        if self._stale:
+            self._boxes[k].remove_class("scara-stale")
+            layout.setdefault("title", new["layout"].get("title"))
+        if _structure(old) != _structure(new):
+            # a different set of traces: replace them (no panel changes its traces' kinds on a move)
+            fw.data = ()
+            fw.add_traces(new["data"])
+            deltas = []
+        else:
+            deltas = [_delta(a, b) for a, b in zip(old["data"], new["data"])]
+            if self._stale:
+                for d, b in zip(deltas, new["data"]):
+                    d["visible"] = b.get("visible", True)
+        if layout or any(deltas):
+            with fw.batch_update():
+                for trace, delta in zip(fw.data, deltas):
+                    if delta:
+                        trace.update(delta, overwrite=True)
+                for key, value in layout.items():
+                    fw.layout[key] = value
+            self.redraws += 1
+        self._states[k] = new
+
+    def _refuse(self, text: str) -> None:
+        """Show ``text`` and mark every figure stale: traces hidden, title replaced, greyed out."""
+        self.last_error = text
+        self.message.value = f"<b>Cannot show this setting:</b> {html.escape(text)}"
+        self.info.value = self._values_html()
+        self.notes.value = ""
+        if self._stale:
+            return
+        for fw, box in zip(self.figures, self._boxes):
+            with fw.batch_update():
+                for trace in fw.data:
+                    trace.visible = False
+                fw.layout.title.text = STALE_TITLE
+            box.add_class("scara-stale")
+            self.redraws += 1
+        self._stale = True
 
     def _ipython_display_(self):
         display(self.widget)
+
+
+def start_value(value, lo: float, hi: float, name: str, unit: str = "") -> float:
+    """A control's starting value, checked against the control's range ``[lo, hi]``: a value outside it
+    raises (a panel never silently clamps what it was given)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError) as exc:
+        raise ScaraError(f"{name} must be a number, got {value!r}") from exc
+    if not (lo <= v <= hi):
+        u = f" {unit}" if unit else ""
+        raise ScaraError(f"{name} = {v:g}{u} is outside the panel's range {lo:g} to {hi:g}{u}")
+    return v

@@ -14,8 +14,7 @@ from ..kinematics import _params
 from ..plots.clik import METHOD_LABELS, _label, envelope, thin
 from ..plots._common import PALETTE
 from ..plots.kinematics import finish_layout
-from ._common import LivePanel
-from .kinematics import _table
+from ._common import LivePanel, PanelView, readable, table
 
 __all__ = ["clik_panel"]
 
@@ -52,7 +51,7 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
                               continuous_update=False, style=_STYLE),
     }
 
-    def render(method, relaxed, Kx, Ky, Kz, Kphi, damping, k0):
+    def compute(method, relaxed, Kx, Ky, Kz, Kphi, damping, k0):
         m = _METHODS[method]
         K = np.array([Kx, Ky, Kz, Kphi])
         if m == "second_order":
@@ -62,6 +61,10 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
             r = clik(traj, m, K, p=p, damping=damping, relaxed=relaxed, k0=k0)
         else:
             r = clik(traj, m, K, p=p, damping=damping)
+        return dict(method=m, relaxed=relaxed, result=r, summary=r.summary())
+
+    def draw(st):
+        m, r, s = st["method"], st["result"], st["summary"]
         fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
         colour = PALETTE.get(m, "#000000")
         for row, series in ((1, r.position_error), (2, r.orientation_error)):
@@ -71,7 +74,6 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
         idx = thin(len(r.t), points)
         fig.add_trace(dict(type="scatter", x=r.t[idx], y=r.w[idx], mode="lines", name="w", showlegend=False,
                            line=dict(color=colour, width=1.5)), row=3, col=1)
-        s = r.summary()
         finish_layout(fig, f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = "
                            f"{s['max_position_error'] * 1e3:.4g} mm", 620)
         fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
@@ -84,7 +86,17 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
                 ("min / mean manipulability (m²)", f"{s['min_manipulability']:.4f} / {s['mean_manipulability']:.4f}"),
                 ("compiled loop (ms)", f"{s['run_time'] * 1e3:.1f}")]
         if m == "pseudoinverse":
-            rows.append((f"drift of the relaxed {relaxed} (max)", f"{np.abs(r.e[:, COMPONENTS.index(relaxed)]).max():.4g}"))
-        return [fig, _table(rows)]
+            drift = np.abs(r.e[:, COMPONENTS.index(st["relaxed"])]).max()
+            rows.append((f"drift of the relaxed {st['relaxed']} (max)", f"{drift:.4g}"))
+        notes = []
+        if s["max_position_error"] > 1e-3:
+            notes.append(f"The tip strays up to {s['max_position_error'] * 1e3:.3g} mm from the path: "
+                         "raise the gains (within the stability limit) to follow it more closely.")
+        return PanelView([fig], table(rows), notes)
 
-    return LivePanel(controls, render, title="CLIK on the 70 s reference: tune and watch", columns=2)
+    def explain(exc, values):
+        gains = ", ".join(f"{name} = {values[key]:.4g} 1/s" for key, name in
+                          (("Kx", "K_x"), ("Ky", "K_y"), ("Kz", "K_z"), ("Kphi", "K_φ")))
+        return f"{values['method']} with {gains}: {readable(str(exc))}"
+
+    return LivePanel(controls, compute, draw, explain=explain, title="CLIK on the 70 s reference: tune and watch", columns=2)

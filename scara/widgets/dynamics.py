@@ -9,21 +9,17 @@ import ipywidgets as ipw
 import numpy as np
 
 from ..dynamics import gravity, inertia
-from ..errors import as_vector, check_positive
+from ..errors import ScaraError, as_vector, check_positive
 from ..kinematics import _params
 from ..plots.dynamics import inertia_figure
 from ..simulate import PDGravityController
-from ._common import LivePanel
+from ._common import LivePanel, PanelView, start_value, table
 
 __all__ = ["dynamics_panel"]
 
 _STYLE = {"description_width": "initial"}
-
-
-def _table(rows):
-    body = "".join(f"<tr><td style='padding:2px 10px'>{a}</td><td style='padding:2px 10px'><b>{b}</b></td></tr>"
-                   for a, b in rows)
-    return f"<table>{body}</table>"
+#: a quill sag above this (m) is flagged in the panel
+_SAG_NOTE = 0.003
 
 
 def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: float = 10000.0,
@@ -33,33 +29,48 @@ def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: 
     quill's steady-state sag ``m_L g0 / K_P3`` under PD plus gravity with a payload-free model.
     Only theta2 and the payload change ``B``: moving the other sliders shows it."""
     p = _params(p)
-    check_positive(payload, "payload", strict=False)
     q = as_vector(q, "q")
     deg = dict(min=-180.0, max=180.0, step=1.0, continuous_update=False, style=_STYLE)
     controls = {
-        "payload": ipw.FloatSlider(value=payload, min=0.0, max=20.0, step=0.5, description="payload m_L (kg)",
-                                   continuous_update=False, style=_STYLE),
-        "theta1": ipw.FloatSlider(value=math.degrees(q[0]), description="θ1 (°)", **deg),
-        "theta2": ipw.FloatSlider(value=math.degrees(q[1]), description="θ2 (°)", **deg),
-        "d3": ipw.FloatSlider(value=q[2], min=0.0, max=p.d0, step=0.01, description="d3 (m)",
-                              continuous_update=False, style=_STYLE),
-        "theta4": ipw.FloatSlider(value=math.degrees(q[3]), description="θ4 (°)", **deg),
-        "K_P3": ipw.FloatLogSlider(value=K_P3, base=10, min=2, max=6, step=0.1, description="K_P3 (N/m)",
-                                   continuous_update=False, style=_STYLE),
+        "payload": ipw.FloatSlider(value=start_value(payload, 0.0, 20.0, "payload", "kg"), min=0.0, max=20.0,
+                                   step=0.5, description="payload m_L (kg)", continuous_update=False, style=_STYLE),
+        "theta1": ipw.FloatSlider(value=start_value(math.degrees(q[0]), -180, 180, "theta1", "°"),
+                                  description="θ1 (°)", **deg),
+        "theta2": ipw.FloatSlider(value=start_value(math.degrees(q[1]), -180, 180, "theta2", "°"),
+                                  description="θ2 (°)", **deg),
+        "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
+                              description="d3 (m)", continuous_update=False, style=_STYLE),
+        "theta4": ipw.FloatSlider(value=start_value(math.degrees(q[3]), -180, 180, "theta4", "°"),
+                                  description="θ4 (°)", **deg),
+        "K_P3": ipw.FloatLogSlider(value=start_value(K_P3, 100.0, 1e6, "K_P3", "N/m"), base=10, min=2, max=6,
+                                   step=0.1, description="K_P3 (N/m)", continuous_update=False, style=_STYLE),
     }
 
-    def render(payload, theta1, theta2, d3, theta4, K_P3):
+    def compute(payload, theta1, theta2, d3, theta4, K_P3):
         robot = p.with_payload(check_positive(payload, "payload", strict=False))
         qq = np.array([math.radians(theta1), math.radians(theta2), d3, math.radians(theta4)])
-        B = inertia(qq, robot)
-        eig = np.linalg.eigvalsh(B)
         ctrl = PDGravityController(K_P=(1.0, 1.0, check_positive(K_P3, "K_P3"), 1.0), model=p.with_payload(0.0))
         sag = -ctrl.steady_state_error(robot)[2]
-        fig = inertia_figure(qq, robot, f"B(q) with a {payload:g} kg payload at θ2 = {theta2:.0f}°")
+        if d3 + sag > p.d0:
+            raise ScaraError(f"with K_P3 = {K_P3:.3g} N/m the {payload:g} kg payload would sag {sag * 1e3:.1f} mm "
+                             f"under PD + gravity: the quill, at d3 = {d3:.2f} m, would need d3 = {d3 + sag:.3f} m, "
+                             f"past the end of its stroke (0 to {p.d0:g} m). Raise K_P3 or lighten the payload.")
+        B = inertia(qq, robot)
+        return dict(q=qq, robot=robot, payload=payload, theta2=theta2, K_P3=K_P3, B=B,
+                    eig=np.linalg.eigvalsh(B), g=gravity(qq, robot), sag=sag)
+
+    def draw(s):
+        fig = inertia_figure(s["q"], s["robot"], f"B(q) with a {s['payload']:g} kg payload at θ2 = {s['theta2']:.0f}°")
+        eig, sag = s["eig"], s["sag"]
         rows = [("eigenvalues of B", ", ".join(f"{v:.4g}" for v in eig)),
                 ("condition number of B", f"{eig[-1] / eig[0]:.1f}"),
-                ("gravity torques g(q) (N m, N m, N, N m)", ", ".join(f"{v:.4g}" for v in gravity(qq, robot))),
+                ("gravity torques g(q) (N m, N m, N, N m)", ", ".join(f"{v:.4g}" for v in s["g"])),
                 ("quill sag under PD + gravity (payload-free model)", f"{sag * 1e3:.3f} mm = m_L g0 / K_P3")]
-        return [fig, _table(rows)]
+        notes = []
+        if sag > _SAG_NOTE:
+            notes.append(f"The quill sags {sag * 1e3:.1f} mm with K_P3 = {s['K_P3']:.3g} N/m: more than "
+                         f"{_SAG_NOTE * 1e3:.0f} mm, visible at the tool. A stiffer K_P3, integral action or a model "
+                         "that knows the payload (chapter 6) removes it.")
+        return PanelView([fig], table(rows), notes)
 
-    return LivePanel(controls, render, title="The inertia matrix: payload and configuration", columns=3)
+    return LivePanel(controls, compute, draw, title="The inertia matrix: payload and configuration", columns=3)

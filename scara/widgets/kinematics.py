@@ -2,66 +2,84 @@
 see both inverse-kinematics solutions (or the reason it cannot be reached). Jupyter only."""
 from __future__ import annotations
 
-import html
 import math
 
 import ipywidgets as ipw
 import numpy as np
 
-from ..errors import as_vector
+from ..errors import UnreachableError, as_vector
 from ..kinematics import _params, ikine, jacobian, pose
 from ..manipulability import manipulability
 from ..plots.kinematics import arm_figure, inverse_kinematics_figure
-from ._common import LivePanel
+from ._common import LivePanel, PanelView, start_value, table
 
 __all__ = ["kinematics_panel", "inverse_kinematics_panel"]
 
 _STYLE = {"description_width": "initial"}
 
 
-def _table(rows) -> str:
-    body = "".join(f"<tr><td style='padding:2px 10px'>{html.escape(a)}</td><td style='padding:2px 10px'>"
-                   f"{html.escape(b)}</td></tr>" for a, b in rows)
-    return f"<table style='font-family:monospace'>{body}</table>"
+def _deg_slider(value_rad, name, desc):
+    v = start_value(math.degrees(value_rad), -180.0, 180.0, name, "°")
+    return ipw.FloatSlider(value=v, min=-180.0, max=180.0, step=1.0, description=desc, continuous_update=False,
+                           style=_STYLE)
 
 
 def kinematics_panel(q=None, p=None) -> LivePanel:
     """A slider per joint (theta1, theta2, theta4 in degrees, d3 in metres); on every move the 3-D arm with
-    its frames is redrawn and ``x_e``, ``det J_A`` and ``w`` are listed (SPEC section 2).
+    its frames is redrawn in place and ``x_e`` (1.6), ``det J_A`` and ``w`` are listed.
 
-    ``q`` is the starting configuration (4,) in rad, rad, m, rad (default ``[0, 60°, d0/2, 0]``).
-    Returns a :class:`LivePanel` (display it as a cell's last expression). A non-finite value is reported in
-    the panel, not raised.
+    ``q`` is the starting configuration (4,) in rad, rad, m, rad (default ``[0, 60°, d0/2, 0]``); angles must lie
+    in [-180°, 180°] and d3 in the quill's stroke [0, d0], the sliders' ranges, or :class:`ScaraError` is raised.
+    Every slider position is a valid configuration, so this panel never refuses a setting.
+    Returns a :class:`LivePanel` (display it as a cell's last expression).
     """
     p = _params(p)
     q = np.array([0.0, math.radians(60.0), 0.5 * p.d0, 0.0]) if q is None else as_vector(q, "q")
-    deg = dict(min=-180.0, max=180.0, step=1.0, continuous_update=False, style=_STYLE)
     controls = {
-        "theta1": ipw.FloatSlider(value=math.degrees(q[0]), description="θ1 (°)", **deg),
-        "theta2": ipw.FloatSlider(value=math.degrees(q[1]), description="θ2 (°)", **deg),
-        "d3": ipw.FloatSlider(value=q[2], min=0.0, max=p.d0, step=0.01, description="d3 (m)",
-                              continuous_update=False, style=_STYLE),
-        "theta4": ipw.FloatSlider(value=math.degrees(q[3]), description="θ4 (°)", **deg),
+        "theta1": _deg_slider(q[0], "theta1", "θ1 (°)"),
+        "theta2": _deg_slider(q[1], "theta2", "θ2 (°)"),
+        "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
+                              description="d3 (m)", continuous_update=False, style=_STYLE),
+        "theta4": _deg_slider(q[3], "theta4", "θ4 (°)"),
     }
 
-    def render(theta1, theta2, d3, theta4):
+    def compute(theta1, theta2, d3, theta4):
         qq = as_vector([math.radians(theta1), math.radians(theta2), d3, math.radians(theta4)], "q")
-        x = pose(qq, p)
-        fig = arm_figure(qq, p, height=480)
+        return dict(q=qq, x=pose(qq, p), det=float(np.linalg.det(jacobian(qq, p))), w=manipulability(qq, p))
+
+    def draw(s):
+        x = s["x"]
         rows = [("p_x, p_y, p_z (m)", f"{x[0]:.4f}, {x[1]:.4f}, {x[2]:.4f}"),
                 ("phi = θ1 + θ2 + θ4 (°)", f"{math.degrees(x[3]):.2f}"),
-                ("det J_A (m²)", f"{np.linalg.det(jacobian(qq, p)):.4f}"),
-                ("w = |det J_A| (m²)", f"{manipulability(qq, p):.4f}")]
-        return [fig, _table(rows)]
+                ("det J_A (m²)", f"{s['det']:.4f}"),
+                ("w = |det J_A| (m²)", f"{s['w']:.4f}")]
+        notes = []
+        if s["w"] < 1e-3:
+            notes.append(f"The arm is singular here (w = {s['w']:.2g} m², θ2 = {math.degrees(s['q'][1]):.0f}°): "
+                         "it cannot move its tip along the line of its links.")
+        return PanelView([arm_figure(s["q"], p, height=480)], table(rows), notes)
 
-    return LivePanel(controls, render, title="Direct kinematics: move a joint")
+    return LivePanel(controls, compute, draw, title="Direct kinematics: move a joint")
+
+
+def _unreachable_text(target, p) -> str:
+    """Why a target is out of reach, in the panel's units (m and degrees)."""
+    r = math.hypot(target[0], target[1])
+    where = (f"the target (x, y, z) = ({target[0]:.3f}, {target[1]:.3f}, {target[2]:.3f}) m, "
+             f"φ = {math.degrees(target[3]):.1f}°")
+    if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12):
+        return (f"{where} is out of reach: it lies r = {r:.4f} m from the joint-1 axis, and the arm reaches "
+                f"from |a1 − a2| = {p.r_min:g} m to a1 + a2 = {p.r_max:g} m.")
+    return (f"{where} is out of reach: z = {target[2]:.3f} m needs the quill at d3 = d0 − z = "
+            f"{p.d0 - target[2]:.3f} m, outside its stroke 0 to {p.d0:g} m.")
 
 
 def inverse_kinematics_panel(x=None, p=None) -> LivePanel:
-    """Type a target ``[p_x, p_y, p_z]`` (m) and ``phi`` (degrees); both closed-form solutions (elbow +1 and
-    -1) are drawn from above and listed. A target outside the workspace shows the :class:`UnreachableError`
-    message naming the limit it breaks. ``x`` is the starting target (4,) in m, m, m, rad (default SPEC
-    section 4's ``p0`` with ``phi = 0``)."""
+    """Type a target ``p_x, p_y, p_z`` (m) and ``phi`` (degrees); both closed-form solutions (elbow +1 and
+    -1) are drawn from above and listed. A target outside the workspace shows why, in metres and degrees,
+    and the figure is marked stale until a reachable target is typed. ``x`` is the starting target (4,) in
+    m, m, m, rad (default the first point of the reference path of chapter 3, ``p0 = (0.18, 0.20, 0.5)`` m,
+    with ``phi = 0``); an unreachable start raises :class:`UnreachableError`."""
     p = _params(p)
     x = np.array([0.18, 0.20, 0.5, 0.0]) if x is None else as_vector(x, "x")
     box = dict(step=0.01, continuous_update=False, style=_STYLE, layout=ipw.Layout(width="180px"))
@@ -72,14 +90,21 @@ def inverse_kinematics_panel(x=None, p=None) -> LivePanel:
         "phi": ipw.FloatText(value=math.degrees(x[3]), description="phi (°)", **dict(box, step=1.0)),
     }
 
-    def render(px, py, pz, phi):
+    def compute(px, py, pz, phi):
         target = as_vector([px, py, pz, math.radians(phi)], "target")
-        fig = inverse_kinematics_figure(target, p, height=460)
-        rows = []
-        for elbow in (+1, -1):
-            q = ikine(target, p, elbow=elbow)
-            rows.append((f"elbow {elbow:+d}: θ1, θ2, θ4 (°); d3 (m)",
-                         f"{math.degrees(q[0]):.2f}, {math.degrees(q[1]):.2f}, {math.degrees(q[3]):.2f}; {q[2]:.4f}"))
-        return [fig, _table(rows)]
+        try:
+            return dict(target=target, q={elbow: ikine(target, p, elbow=elbow) for elbow in (+1, -1)})
+        except UnreachableError as exc:
+            raise UnreachableError(_unreachable_text(target, p)) from exc
 
-    return LivePanel(controls, render, title="Inverse kinematics: type a target", columns=4)
+    def draw(s):
+        rows = [(f"elbow {elbow:+d}: θ1, θ2, θ4 (°); d3 (m)",
+                 f"{math.degrees(q[0]):.2f}, {math.degrees(q[1]):.2f}, {math.degrees(q[3]):.2f}; {q[2]:.4f}")
+                for elbow, q in s["q"].items()]
+        notes = []
+        if abs(math.sin(s["q"][1][1])) < 1e-3:
+            notes.append("The two elbows coincide: the target is on the rim of the workspace, where the arm is "
+                         "singular.")
+        return PanelView([inverse_kinematics_figure(s["target"], p, height=460)], table(rows), notes)
+
+    return LivePanel(controls, compute, draw, title="Inverse kinematics: type a target", columns=4)

@@ -7,49 +7,71 @@ import math
 import ipywidgets as ipw
 import plotly.graph_objects as go
 
-from ..errors import as_vector, check_positive
+from ..errors import ScaraError, as_vector
 from ..kinematics import _params
 from ..manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
 from ..plots.kinematics import finish_layout
 from ..plots.manipulability import ellipse_traces
-from ._common import LivePanel
-from .kinematics import _table
+from ._common import LivePanel, PanelView, start_value, table
 
 __all__ = ["manipulability_panel"]
 
 _STYLE = {"description_width": "initial"}
+#: below this ratio of the smaller to the larger velocity semi-axis the arm is treated as singular
+_SINGULAR_RATIO = 1e-6
 
 
 def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15, p=None) -> LivePanel:
     """Sliders for theta1 and theta2 (degrees) and the ellipse scale (metres drawn per m/s and per N); the
-    top view of the arm with its horizontal velocity and force ellipses is redrawn on every move, with ``w``
-    and the semi-axes listed. Angles given here in rad. A scale of 0 (or any invalid value) is reported in the
-    panel, not raised."""
+    top view of the arm with its horizontal velocity and force ellipses is redrawn in place on every move, with
+    ``w`` and the semi-axes listed. The starting angles are given here in rad (within [-180°, 180°]) and the
+    scale within (0, 0.5]; values outside these ranges raise :class:`ScaraError`. A scale of 0 set on the
+    slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table says
+    so instead of printing a huge number."""
     p = _params(p)
-    check_positive(scale, "scale")
     deg = dict(min=-180.0, max=180.0, step=1.0, continuous_update=False, style=_STYLE)
+    sc0 = start_value(scale, 0.0, 0.5, "scale", "m per m/s")
+    if sc0 <= 0:
+        raise ScaraError(f"scale = {sc0:g} must be > 0 (metres drawn per m/s and per N)")
     controls = {
-        "theta1": ipw.FloatSlider(value=math.degrees(theta1), description="θ1 (°)", **deg),
-        "theta2": ipw.FloatSlider(value=math.degrees(theta2), description="θ2 (°)", **deg),
-        "scale": ipw.FloatSlider(value=scale, min=0.0, max=0.5, step=0.01, description="ellipse scale",
+        "theta1": ipw.FloatSlider(value=start_value(math.degrees(theta1), -180, 180, "theta1", "°"),
+                                  description="θ1 (°)", **deg),
+        "theta2": ipw.FloatSlider(value=start_value(math.degrees(theta2), -180, 180, "theta2", "°"),
+                                  description="θ2 (°)", **deg),
+        "scale": ipw.FloatSlider(value=sc0, min=0.0, max=0.5, step=0.01, description="ellipse scale",
                                  continuous_update=False, style=_STYLE),
     }
 
-    def render(theta1, theta2, scale):
+    def compute(theta1, theta2, scale):
+        if not scale > 0:
+            raise ScaraError(f"the ellipse scale is {scale:g}: it must be above 0 to draw the ellipses "
+                             "(metres drawn per m/s and per N)")
         q = as_vector([math.radians(theta1), math.radians(theta2), 0.5 * p.d0, 0.0], "q")
-        sc = check_positive(scale, "ellipse scale")
+        v = velocity_ellipsoid(q, p, rows=(0, 1))
+        singular = v.lengths[1] < _SINGULAR_RATIO * v.lengths[0]
+        return dict(q=q, theta=(theta1, theta2), scale=scale, w=manipulability(q, p), v=v,
+                    f=None if singular else force_ellipsoid(q, p, rows=(0, 1)))
+
+    def draw(s):
+        q, sc, v, f = s["q"], s["scale"], s["v"], s["f"]
         fig = go.Figure(ellipse_traces(q, p, sc, sc, axes=True))
-        finish_layout(fig, f"θ1 = {theta1:.0f}°, θ2 = {theta2:.0f}°: w = {manipulability(q, p):.3f} m²", 520)
+        finish_layout(fig, f"θ1 = {s['theta'][0]:.0f}°, θ2 = {s['theta'][1]:.0f}°: w = {s['w']:.3f} m²", 520)
         reach = p.r_max + 0.2
         fig.update_xaxes(title_text="x (m)", range=[-reach, reach], constrain="domain")
         fig.update_yaxes(title_text="y (m)", range=[-reach, reach], scaleanchor="x", scaleratio=1)
-        v = velocity_ellipsoid(q, p, rows=(0, 1))
-        f = force_ellipsoid(q, p, rows=(0, 1))
-        rows = [("velocity semi-axes σ (m/s, unit joint-speed norm)", ", ".join(f"{s:.4f}" for s in v.lengths)),
-                ("force semi-axes 1/σ (N, unit torque norm)", ", ".join(f"{s:.4g}" for s in f.lengths)),
-                ("major velocity axis direction (°)",
-                 f"{math.degrees(math.atan2(v.axes[1, 0], v.axes[0, 0])):.1f}"),
+        major = math.degrees(math.atan2(v.axes[1, 0], v.axes[0, 0]))
+        notes = []
+        if f is None:
+            force = "unbounded along the links (singular arm)"
+            notes.append(f"The arm is singular at θ2 = {s['theta'][1]:.0f}°: it cannot move its tip along the line "
+                         "of its links, and so it can resist any force along that line with no torque; the "
+                         "force ellipse degenerates into an infinitely long segment.")
+        else:
+            force = ", ".join(f"{x:.4g}" for x in f.lengths)
+        rows = [("velocity semi-axes σ (m/s, unit joint-speed norm)", ", ".join(f"{x:.4f}" for x in v.lengths)),
+                ("force semi-axes 1/σ (N, unit torque norm)", force),
+                ("major velocity axis direction (°)", f"{major:.1f}"),
                 ("vertical semi-axis (both)", "1 (z is decoupled)")]
-        return [fig, _table(rows)]
+        return PanelView([fig], table(rows), notes)
 
-    return LivePanel(controls, render, title="Velocity and force ellipses: move the arm", columns=3)
+    return LivePanel(controls, compute, draw, title="Velocity and force ellipses: move the arm", columns=3)

@@ -2,117 +2,138 @@
 
 Pick a waypoint and move it with the x/y/z sliders, make it a via point or a stop, change a segment's
 duration or a via point's anticipation: the path is re-planned with :func:`~scara.trajectory.plan_path` and
-redrawn at once. An invalid or unreachable edit shows the planner's message in place of the plot.
+redrawn in place at once. An invalid or unreachable edit shows the planner's message and marks the figures
+stale; the plan keeps its last valid state, so picking another waypoint or undoing the edit goes on from there.
 """
 from __future__ import annotations
 
-import html
-
 import ipywidgets as ipw
+import plotly.graph_objects as go
 
-from ..trajectory import Waypoint, plan_path, reference_plan
+from ..errors import ScaraError
 from ..plots.trajectory import profiles_figure, top_view_figure
-from ._common import LivePanel
+from ..trajectory import Waypoint, plan_path, reference_plan
+from ._common import LivePanel, PanelView, table
 
 __all__ = ["WaypointEditor", "waypoint_editor"]
 
 _STYLE = {"description_width": "initial"}
+_SELECTED = "#D55E00"
 
 
 class WaypointEditor:
     """The editor's state (``plan``: keyword arguments of :func:`plan_path`) and its :class:`LivePanel`.
 
-    ``plan`` defaults to the reference scenario with ``total=None`` (the series ends when the motion does, so
-    a longer edit is never refused for overrunning 70 s). ``editor.trajectory`` is the last valid plan;
-    ``editor.panel.last_error`` the last message shown, or None.
+    ``plan`` defaults to the reference scenario of chapter 3 with ``total=None`` (the series ends when the
+    motion does, so a longer edit is never refused for overrunning 70 s); any valid plan of two waypoints or
+    more opens. ``editor.trajectory`` is the last valid plan; ``editor.panel.last_error`` the message shown, or
+    None. The sliders' ranges cover the plan's own values (positions within the arm's reach, durations and
+    anticipations from 0.1 s), so loading a waypoint never clamps it.
     """
 
     def __init__(self, plan: dict | None = None, profiles: bool = True):
-        self.plan = dict(reference_plan(), total=None) if plan is None else dict(plan)
-        self.plan["waypoints"] = [w if isinstance(w, Waypoint) else Waypoint(w, label=f"p{i}")
-                                  for i, w in enumerate(self.plan["waypoints"])]
-        self.plan["waypoints"] = [w if w.label else w.replace(label=f"p{i}") for i, w in enumerate(self.plan["waypoints"])]
-        self.plan["durations"] = list(self.plan["durations"])
+        plan = dict(reference_plan(), total=None) if plan is None else dict(plan)
+        if "waypoints" not in plan or "durations" not in plan:
+            raise ScaraError("a plan needs 'waypoints' and 'durations' (the arguments of plan_path)")
+        wps = [w if isinstance(w, Waypoint) else Waypoint(w) for w in plan["waypoints"]]
+        plan["waypoints"] = [w if w.label else w.replace(label=f"p{i}") for i, w in enumerate(wps)]
+        plan["durations"] = [float(d) for d in plan["durations"]]
+        self.trajectory = plan_path(**plan)  # an invalid plan raises here, with the planner's message
+        self.plan = plan
         self.profiles = profiles
-        self.trajectory = None
-        wps = self.plan["waypoints"]
+        wps = plan["waypoints"]
         labels = [w.label for w in wps]
         segs = [f"{labels[j]}->{labels[j + 1]}" for j in range(len(wps) - 1)]
-        first_via = next((i for i, w in enumerate(wps) if w.via), 1)
-        w0 = wps[first_via]
+        first = next((i for i, w in enumerate(wps) if w.via), 0)
+        w0, seg0 = wps[first], min(first, len(segs) - 1)
+        durations = plan["durations"]
+        ants = [w.anticipation for w in wps if w.via]
         slide = dict(continuous_update=False, style=_STYLE, readout_format=".3f")
+        reach = max(1.0, *(abs(v) for w in wps for v in w.position[:2]))
         controls = {
-            "point": ipw.Dropdown(options=[(lab, i) for i, lab in enumerate(labels)], value=first_via,
+            "point": ipw.Dropdown(options=[(lab, i) for i, lab in enumerate(labels)], value=first,
                                   description="waypoint", style=_STYLE),
             "via": ipw.Checkbox(value=w0.via, description="via point (do not stop)", style=_STYLE),
-            "x": ipw.FloatSlider(value=w0.position[0], min=-1.0, max=1.0, step=0.005, description="x (m)", **slide),
-            "anticipation": ipw.FloatSlider(value=w0.anticipation or 1.0, min=0.1, max=5.0, step=0.1,
-                                            description="anticipation (s)", continuous_update=False, style=_STYLE),
-            "y": ipw.FloatSlider(value=w0.position[1], min=-1.0, max=1.0, step=0.005, description="y (m)", **slide),
-            "segment": ipw.Dropdown(options=[(s, j) for j, s in enumerate(segs)], value=first_via,
+            "x": ipw.FloatSlider(value=w0.position[0], min=-reach, max=reach, step=0.005, description="x (m)",
+                                 **slide),
+            "anticipation": ipw.FloatSlider(value=w0.anticipation or 1.0, min=0.1, max=max(5.0, *ants, 0.1),
+                                            step=0.1, description="anticipation (s)", continuous_update=False,
+                                            style=_STYLE),
+            "y": ipw.FloatSlider(value=w0.position[1], min=-reach, max=reach, step=0.005, description="y (m)",
+                                 **slide),
+            "segment": ipw.Dropdown(options=[(s, j) for j, s in enumerate(segs)], value=seg0,
                                     description="segment", style=_STYLE),
-            "z": ipw.FloatSlider(value=w0.position[2], min=0.0, max=1.0, step=0.005, description="z (m)", **slide),
-            "duration": ipw.FloatSlider(value=self.plan["durations"][first_via], min=0.5, max=20.0, step=0.1,
-                                        description="duration (s)", continuous_update=False, style=_STYLE),
+            "z": ipw.FloatSlider(value=w0.position[2], min=min(0.0, *(w.position[2] for w in wps)),
+                                 max=max(1.0, *(w.position[2] for w in wps)), step=0.005, description="z (m)",
+                                 **slide),
+            "duration": ipw.FloatSlider(value=durations[seg0], min=min(0.1, *durations),
+                                        max=max(20.0, *durations), step=0.1, description="duration (s)",
+                                        continuous_update=False, style=_STYLE),
         }
-        self._loaded = (first_via, first_via)
-        self._loading = False
-        self._last = None
-        self.panel = LivePanel(controls, self._render, title="Waypoint editor: edit the path, watch it re-planned")
+        self.panel = LivePanel(controls, self._compute, self._draw,
+                               title="Waypoint editor: edit the path, watch it re-planned", react=self._react)
 
-    # the panel calls this on every change
-    def _render(self, point, via, x, anticipation, y, segment, z, duration):
-        if self._loading:  # widgets being set to the newly picked waypoint's values: nothing changed yet
-            if self._last is None:
-                raise ValueError("loading")
-            return self._last
-        if (point, segment) != self._loaded:
-            self._load(point, segment)
-        else:
-            w = self.plan["waypoints"][point]
-            self.plan["waypoints"][point] = w.replace(position=(x, y, z), anticipation=anticipation if via else 0.0)
-            self.plan["durations"][segment] = duration
-        traj = plan_path(**self.plan)
-        self.trajectory = traj
-        s = traj.summary()
-        corner = ", ".join(f"{k}: {1000 * v:.1f} mm" for k, v in s["corner_distances"].items()) or "none"
-        info = (f"<div style='font-family:monospace'>motion ends at {s['motion_end']:.1f} s · peak speed "
-                f"{100 * s['max_speed']:.2f} cm/s · peak acceleration {100 * s['max_acceleration']:.2f} cm/s² · "
-                f"min manipulability {s['min_manipulability']:.4f} m² at {s['min_manipulability_time']:.1f} s<br>"
-                f"corner distances at the via points: {html.escape(corner)}</div>")
-        figs = [top_view_figure(traj, points=1200, title="The edited path seen from above", height=460)]
+    # ------------------------------------------------------------------------------------------------------
+    def _react(self, change):
+        """A waypoint or segment picked: show its current values on the sliders (one redraw follows)."""
+        c = self.panel.controls
+        if change["owner"] is c["point"]:
+            w = self.plan["waypoints"][change["new"]]
+            c["x"].value, c["y"].value, c["z"].value = w.position
+            c["via"].value = w.via
+            if w.via:
+                c["anticipation"].value = w.anticipation
+        elif change["owner"] is c["segment"]:
+            c["duration"].value = self.plan["durations"][change["new"]]
+
+    def _compute(self, point, via, x, anticipation, y, segment, z, duration):
+        """Apply the sliders to the picked waypoint and segment and re-plan; the plan changes only if the
+        planner accepts the edit."""
+        plan = dict(self.plan, waypoints=list(self.plan["waypoints"]), durations=list(self.plan["durations"]))
+        w = plan["waypoints"][point]
+        plan["waypoints"][point] = w.replace(position=(x, y, z), anticipation=anticipation if via else 0.0)
+        plan["durations"][segment] = duration
+        traj = plan_path(**plan)
+        self.plan, self.trajectory = plan, traj
+        return dict(traj=traj, point=point)
+
+    def _draw(self, s):
+        traj, k = s["traj"], s["point"]
+        label = traj.labels[k]
+        top = top_view_figure(traj, points=1200, title=f"The edited path seen from above (editing {label})",
+                              height=460)
+        pos = traj.waypoints[k]
+        top.add_trace(go.Scatter(x=[float(pos[0])], y=[float(pos[1])], mode="markers", name=f"editing {label}",
+                                 marker=dict(size=18, symbol="circle-open", color=_SELECTED, line=dict(width=3)),
+                                 hoverinfo="skip"))
+        figs = [top]
         if self.profiles:
             figs.append(profiles_figure(traj, points=1000, height=620,
                                         title="Its position, velocity and acceleration (orange: via overlaps)"))
-        self._last = figs + [info]
-        return self._last
-
-    def _load(self, point, segment):
-        """Show the picked waypoint's and segment's current values on the sliders."""
-        c = self.panel.controls if hasattr(self, "panel") else None
-        w = self.plan["waypoints"][point]
-        self._loading = True
-        try:
-            if c is not None:
-                c["x"].value, c["y"].value, c["z"].value = w.position
-                c["via"].value = w.via
-                if w.via:
-                    c["anticipation"].value = w.anticipation
-                c["duration"].value = self.plan["durations"][segment]
-        finally:
-            self._loading = False
-        self._loaded = (point, segment)
+        summ = traj.summary()
+        corner = ", ".join(f"{name}: {1000 * v:.1f} mm" for name, v in summ["corner_distances"].items()) or "none"
+        rows = [("motion ends at (s)", f"{summ['motion_end']:.1f}"),
+                ("peak speed (cm/s)", f"{100 * summ['max_speed']:.2f}"),
+                ("peak acceleration (cm/s²)", f"{100 * summ['max_acceleration']:.2f}"),
+                ("min manipulability (m²)",
+                 f"{summ['min_manipulability']:.4f} at {summ['min_manipulability_time']:.1f} s"),
+                ("corner distances at the via points", corner)]
+        notes = []
+        if summ["min_manipulability"] < 0.01:
+            notes.append(f"The path passes close to a singular configuration (w = {summ['min_manipulability']:.2g} m² "
+                         f"at {summ['min_manipulability_time']:.1f} s): the joints must move fast there.")
+        return PanelView(figs, table(rows), notes)
 
     def _ipython_display_(self):
         self.panel._ipython_display_()
 
 
 def waypoint_editor(plan: dict | None = None, profiles: bool = True) -> WaypointEditor:
-    """A live waypoint editor on ``plan`` (default: the reference scenario of SPEC section 4).
+    """A live waypoint editor on ``plan`` (default: the reference scenario of chapter 3).
 
     Controls: the waypoint to edit and its x/y/z (m), via or stop and the anticipation (s), the segment to
     edit and its duration (s). Every change re-plans the path and redraws the top view (and, with
-    ``profiles``, the time profiles); an invalid edit shows the planner's message instead. Display the
-    returned object as a cell's last expression.
+    ``profiles``, the time profiles) in place; an invalid edit shows the planner's message instead and marks
+    the figures stale. Display the returned object as a cell's last expression.
     """
     return WaypointEditor(plan, profiles)

@@ -1,0 +1,366 @@
+"""Drive a real JupyterLab in Debian's Chromium, as a learner does: open a chapter, run all cells, move the
+controls of the live panels and watch the figures redraw.
+
+Used by ``tests/test_jupyterlab.py`` (which asserts) and ``benchmarks/live_panels.py`` (which times). The
+server is started on 127.0.0.1 with a free port and no token, on a temporary copy of the chapters (running
+them never touches the committed notebooks), with its own settings folder (no news pop-up, every cell kept in
+the page) and stopped afterwards. Nothing is fetched from outside this machine: every request that is not to
+the server is aborted and recorded.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from contextlib import contextmanager
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOK = ROOT / "book"
+CHROMIUM = os.environ.get("SCARA_CHROMIUM", "/usr/bin/chromium")
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+        "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic"]
+
+#: JupyterLab settings for a quiet, deterministic session
+SETTINGS = {
+    "@jupyterlab/apputils-extension/notification.jupyterlab-settings": {"fetchNews": "false",
+                                                                        "checkForUpdates": False},
+    # keep every cell in the page, so that all outputs can be inspected without scrolling them into view
+    "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none",
+                                                                   "autoStartDefaultKernel": True},
+}
+
+
+def jupyter_executable() -> Path | None:
+    exe = Path(sys.executable).parent / "jupyter"
+    return exe if exe.exists() else (Path(p) if (p := shutil.which("jupyter")) else None)
+
+
+def chromium_available() -> bool:
+    return Path(CHROMIUM).exists() or shutil.which(CHROMIUM) is not None
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextmanager
+def jupyterlab_server(notebooks=None, timeout: float = 90.0):
+    """Start ``jupyter lab`` on a temporary copy of ``notebooks`` (default: every chapter); yield its base URL.
+    The server, its kernels and its temporary folders are removed on exit."""
+    exe = jupyter_executable()
+    if exe is None:
+        raise RuntimeError("jupyter is not installed in this environment")
+    tmp = Path(tempfile.mkdtemp(prefix="scara-lab-"))
+    root = tmp / "book"
+    root.mkdir()
+    for nb in notebooks or sorted(BOOK.glob("*.ipynb")):
+        shutil.copy(nb, root / Path(nb).name)
+    settings = tmp / "settings"
+    for name, value in SETTINGS.items():
+        path = settings / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(value))
+    env = dict(os.environ, JUPYTER_CONFIG_DIR=str(tmp / "config"), JUPYTERLAB_SETTINGS_DIR=str(settings),
+               JUPYTERLAB_WORKSPACES_DIR=str(tmp / "workspaces"), JUPYTER_RUNTIME_DIR=str(tmp / "runtime"),
+               IPYTHONDIR=str(tmp / "ipython"))
+    port = _free_port()
+    log = open(tmp / "server.log", "w")
+    proc = subprocess.Popen(
+        [str(exe), "lab", "--no-browser", "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={port}",
+         "--ServerApp.port_retries=0", "--allow-root", "--IdentityProvider.token=", "--ServerApp.password=",
+         f"--ServerApp.root_dir={root}", "--LabApp.news_url=", "--ServerApp.disable_check_xsrf=True"],
+        stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+    url = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + timeout
+        while True:
+            if proc.poll() is not None:
+                raise RuntimeError(f"jupyter lab exited with {proc.returncode}: {(tmp / 'server.log').read_text()[-2000:]}")
+            try:
+                with urllib.request.urlopen(f"{url}/api/status", timeout=2) as r:
+                    if r.status == 200:
+                        break
+            except OSError:
+                pass
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"jupyter lab did not answer on {url} within {timeout:.0f} s")
+            time.sleep(0.3)
+        yield url
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGTERM)
+            proc.wait(timeout=20)
+        except (ProcessLookupError, subprocess.TimeoutExpired):
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        log.close()
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+@contextmanager
+def chromium():
+    """A headless Chromium (Debian's, through Playwright); yields the browser."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
+        try:
+            yield browser
+        finally:
+            browser.close()
+
+
+# JavaScript run in the page ------------------------------------------------------------------------------
+#: record every plotly_afterplot of every figure, and the time of every key press and change
+INSTRUMENT = """() => {
+  window.__scara = window.__scara || {after: [], keys: [], hooked: new WeakSet()};
+  if (!window.__scara.listening) {
+    window.__scara.listening = true;
+    for (const ev of ['keydown', 'change', 'click']) {
+      document.addEventListener(ev, () => window.__scara.keys.push(performance.now()), true);
+    }
+  }
+  const plots = Array.from(document.querySelectorAll('.js-plotly-plot'));
+  plots.forEach((gd, i) => {
+    if (!window.__scara.hooked.has(gd) && gd.on) {
+      window.__scara.hooked.add(gd);
+      gd.on('plotly_afterplot', () => window.__scara.after.push({plot: gd.dataset.scaraId || '', t: performance.now()}));
+    }
+  });
+  return plots.length;
+}"""
+
+#: a summary of one panel's figures: traces (name, visible, x/y/z as plain arrays) and title
+FIGURES = """(panel) => {
+  const arr = (v) => (v === undefined || v === null) ? null : (typeof v === 'string' ? v :
+                     Array.from(v, e => (e === null || e === undefined) ? null : (typeof e === 'string' ? e : Number(e))));
+  return Array.from(panel.querySelectorAll('.js-plotly-plot')).map(gd => ({
+    title: (gd.layout && gd.layout.title && (gd.layout.title.text !== undefined ? gd.layout.title.text : gd.layout.title)) || '',
+    stale: !!gd.closest('.scara-stale'),
+    traces: (gd.data || []).map((t, i) => {
+      // arrays as plotly decoded them (gd.data may hold them base64-encoded)
+      const full = (gd._fullData || []).find(f => f.index === i) || {};
+      const pick = (k) => arr(full[k] !== undefined ? full[k] : t[k]);
+      return {name: t.name || '', visible: t.visible === undefined ? true : t.visible, type: t.type || 'scatter',
+              x: pick('x'), y: pick('y'), z: (t.type === 'heatmap') ? null : pick('z'),
+              text: Array.isArray(full.text) || ArrayBuffer.isView(full.text) ? Array.from(full.text) : (t.text === undefined ? null : t.text)};
+    }),
+  }));
+}"""
+
+
+class Lab:
+    """One JupyterLab page: open a notebook, run it, inspect it, move controls, time redraws."""
+
+    def __init__(self, browser, url: str, width: int = 1400, height: int = 1000):
+        self.url = url
+        self.context = browser.new_context(viewport={"width": width, "height": height})
+        self.page = self.context.new_page()
+        self.external: list[str] = []
+        self.console_errors: list[str] = []
+        self.page_errors: list[str] = []
+        self.context.route("**/*", self._route)
+        self.page.on("console", self._console)
+        self.page.on("pageerror", lambda exc: self.page_errors.append(str(exc)))
+
+    def _route(self, route):
+        if route.request.url.startswith(self.url):
+            route.continue_()
+        else:
+            self.external.append(route.request.url)
+            route.abort()
+
+    def _console(self, msg):
+        if msg.type == "error":
+            self.console_errors.append(msg.text)
+
+    def close(self):
+        """Close the page and shut down every kernel of the server (the next chapter starts afresh)."""
+        self.context.close()
+        with urllib.request.urlopen(f"{self.url}/api/kernels", timeout=10) as r:
+            kernels = json.load(r)
+        for k in kernels:
+            req = urllib.request.Request(f"{self.url}/api/kernels/{k['id']}", method="DELETE")
+            try:
+                urllib.request.urlopen(req, timeout=20).close()
+            except OSError:
+                pass
+
+    # -- notebooks ----------------------------------------------------------------------------------------
+    def open(self, name: str, timeout: float = 60.0):
+        self.page.goto(f"{self.url}/lab/tree/{name}?reset", wait_until="domcontentloaded")
+        self.page.wait_for_selector(".jp-Notebook .jp-Cell", timeout=timeout * 1000)
+        # JupyterLab may still ask which kernel to start if the kernel list came late: take the notebook's own
+        dialog = self.page.locator(".jp-Dialog", has_text="Select Kernel")
+        try:
+            dialog.wait_for(timeout=1500)
+            dialog.locator("button.jp-mod-accept").click()
+        except Exception:  # noqa: BLE001 - no dialog: the kernel started by itself
+            pass
+        self.wait_kernel_idle(timeout)
+
+    def kernel_status(self) -> str:
+        return self.page.evaluate("""() => {
+          const el = document.querySelector('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-Toolbar-kernelStatus, '
+                                           + '.jp-NotebookPanel:not(.lm-mod-hidden) [data-jp-item-name="kernelStatus"]');
+          return el ? (el.getAttribute('title') || el.getAttribute('aria-label') || el.className) : '';
+        }""")
+
+    def wait_kernel_idle(self, timeout: float = 60.0):
+        """Wait until the notebook's kernel has started and is idle (the status bar reads
+        "Python 3 (ipykernel) | Idle")."""
+        self.page.wait_for_function("""() => Array.from(document.querySelectorAll('.jp-StatusBar-Widget span, .jp-StatusBar-TextItem'))
+            .some(e => /\\(ipykernel\\)\\s*\\|\\s*Idle/.test(e.textContent))""", timeout=timeout * 1000, polling=100)
+
+    def run_all(self, timeout: float = 300.0) -> float:
+        """Run → Run All Cells; wait until the kernel is idle with no cell queued or running (a failing cell
+        stops the run: :meth:`cell_errors` tells). Returns the seconds it took."""
+        t0 = time.monotonic()
+        started = """() => Array.from(document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-CodeCell .jp-InputPrompt'))
+                           .some(p => /\\[(\\d+|\\*)\\]/.test(p.textContent))"""
+        for attempt in range(3):  # a kernel still starting may drop the first request
+            self.page.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
+            self.page.locator(".lm-Menu-itemLabel", has_text="Run All Cells").first.click()
+            try:
+                self.page.wait_for_function(started, timeout=20000, polling=100)
+                break
+            except Exception:  # noqa: BLE001 - try again
+                self.page.keyboard.press("Escape")
+        done = """() => {
+          const prompts = Array.from(document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-CodeCell .jp-InputPrompt'));
+          const busy = document.querySelector('.jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook-ExecutionIndicator');
+          return prompts.some(p => /\\[\\d+\\]/.test(p.textContent)) && !prompts.some(p => p.textContent.includes('*'))
+                 && busy && busy.getAttribute('data-status') === 'idle';
+        }"""
+        while True:
+            self.page.wait_for_function(done, timeout=max(1.0, timeout - (time.monotonic() - t0)) * 1000, polling=100)
+            elapsed = time.monotonic() - t0
+            self.page.wait_for_timeout(700)  # still done a moment later: not between two cells
+            if self.page.evaluate(done):
+                return elapsed
+
+    def cell_errors(self) -> list[str]:
+        return self.page.evaluate("""() => Array.from(document.querySelectorAll(
+            '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"], '
+          + '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.error"]'))
+          .map(e => e.textContent.slice(0, 600))""")
+
+    def log_console_entries(self) -> list[str]:
+        """Open the Log Console for this notebook and return what it lists (level: all)."""
+        self.page.locator(".lm-MenuBar-itemLabel", has_text="View").first.click()
+        self.page.locator(".lm-Menu-itemLabel", has_text="Show Log Console").first.click()
+        self.page.wait_for_selector(".jp-LogConsole", timeout=10000)
+        # show every level, debug included
+        select = self.page.locator(".jp-LogConsole-toolbar select, .jp-LogConsolePanel select").first
+        if select.count():
+            try:
+                select.select_option("debug")
+            except Exception:  # noqa: BLE001 - older layouts have no level selector
+                pass
+        self.page.wait_for_timeout(300)
+        entries = self.page.evaluate("""() => Array.from(document.querySelectorAll(
+            '.jp-LogConsole .jp-OutputArea-child')).map(e => e.textContent.slice(0, 4000))""")
+        return entries
+
+    def raw_myst_text(self) -> list[str]:
+        """Raw MyST markup a reader sees in the rendered markdown cells: role or directive names in braces
+        ({eq}, {doc}, {numref}, ...), code fences of directives, or an unknown directive other than
+        ``glue:figure`` (jupyterlab-myst has no ``glue``: it shows a folded "glue:figure - Unknown Directive"
+        box where the book places a captioned figure; the figure itself is under its code cell)."""
+        return self.page.evaluate("""() => {
+          const out = [];
+          for (const cell of document.querySelectorAll('.jp-MarkdownCell .jp-RenderedMarkdown, .jp-MarkdownCell .jp-RenderedMySTMarkdown')) {
+            const walker = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
+            let text = '';
+            for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+              let skip = false;
+              for (let a = n.parentElement; a && a !== cell; a = a.parentElement) {
+                if (a.tagName === 'PRE') {
+                  for (let b = a.parentElement, k = 0; b && b !== cell && k < 6; b = b.parentElement, k++) {
+                    if (/^\\s*glue:figure\\s*-\\s*Unknown Directive/.test(b.textContent)) { skip = true; break; }
+                  }
+                }
+                if (skip) break;
+              }
+              if (!skip) text += n.textContent;
+            }
+            const m = text.match(/\\{(eq|doc|numref|glue:text|glue:figure|glue|dropdown|math|ref|cite|cite:p|cite:t|figure|admonition|note)\\}|```/);
+            if (m) out.push(text.slice(Math.max(0, m.index - 60), m.index + 60));
+            const unknown = text.match(/(\\S+) - Unknown Directive/g) || [];
+            for (const u of unknown) if (!u.startsWith('glue:figure')) out.push(u);
+          }
+          return out;
+        }""")
+
+    def render_markdown_cells(self):
+        """Ensure every markdown cell is rendered (they are after Run All)."""
+        return self.page.locator(".jp-MarkdownCell").count()
+
+    # -- panels -------------------------------------------------------------------------------------------
+    def panels(self):
+        return self.page.locator(".scara-panel")
+
+    def plots_outside_panels(self) -> int:
+        return self.page.evaluate("""() => Array.from(document.querySelectorAll('.jp-OutputArea .js-plotly-plot'))
+          .filter(gd => !gd.closest('.scara-panel')).length""")
+
+    def figures(self, panel) -> list[dict]:
+        return panel.evaluate(FIGURES)
+
+    def instrument(self) -> int:
+        return self.page.evaluate(INSTRUMENT)
+
+    def mark(self) -> tuple[int, int]:
+        return self.page.evaluate("() => [window.__scara.after.length, window.__scara.keys.length]")
+
+    @staticmethod
+    def state(panel) -> dict:
+        """The panel's hidden record of its last update: ``values`` (what the figures were computed for),
+        ``seq`` (the update's number), ``compute_ms``, ``draw_ms``, ``send_ms``."""
+        text = panel.evaluate("(p) => { const e = p.querySelector('.scara-panel-values'); return e ? e.textContent : ''; }")
+        return json.loads(text) if text else {}
+
+    def values(self, panel) -> dict:
+        return self.state(panel).get("values", {})
+
+    @staticmethod
+    def message(panel) -> str:
+        return panel.evaluate("(p) => { const e = p.querySelector('.scara-panel-message'); return e ? e.innerText : ''; }")
+
+    def timing_since(self, mark, panel, before: dict, settle_ms: float = 350.0, timeout: float = 30.0) -> dict:
+        """Wait until the panel has taken the change made after ``mark`` (its update number moved past
+        ``before``'s) and its figures have stopped redrawing for ``settle_ms``; return the time from the first
+        key press or change after ``mark`` to the last redraw (ms, None if nothing was redrawn) and the
+        redraw count."""
+        a0, k0 = mark
+        deadline = time.monotonic() + timeout
+        while self.state(panel).get("seq") == before.get("seq"):
+            if time.monotonic() > deadline:
+                raise TimeoutError(f"the panel did not take the change within {timeout:.0f} s (values {before})")
+            self.page.wait_for_timeout(20)
+        last_n, last_change = -1, time.monotonic()
+        while time.monotonic() < deadline:
+            n = self.page.evaluate("() => window.__scara.after.length")
+            if n != last_n:
+                last_n, last_change = n, time.monotonic()
+            elif (time.monotonic() - last_change) * 1000 >= settle_ms:
+                break
+            self.page.wait_for_timeout(20)
+        data = self.page.evaluate("([a0, k0]) => ({after: window.__scara.after.slice(a0), keys: window.__scara.keys.slice(k0)})",
+                                  [a0, k0])
+        if not data["after"] or not data["keys"]:
+            return {"latency_ms": None, "redraws": len(data["after"])}
+        t_key = data["keys"][0]
+        return {"latency_ms": max(a["t"] for a in data["after"]) - t_key, "redraws": len(data["after"])}
