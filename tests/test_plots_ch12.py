@@ -274,7 +274,9 @@ def test_inverse_kinematics_panel_reports_unreachable_targets():
     panel = _quiet(inverse_kinematics_panel)
     assert panel.last_error is None
     _quiet(setattr, panel.controls["px"], "value", 2.0)
-    assert "unreachable" in panel.last_error and "annulus" in panel.last_error
+    # in the panel's units: the target as (x, y, z) in m with phi in degrees, and the arm's reach
+    assert "out of reach" in panel.last_error and "(x, y, z) = (2.000, 0.200, 0.500) m" in panel.last_error
+    assert "a1 + a2 = 1 m" in panel.last_error
     _quiet(setattr, panel.controls["px"], "value", 0.3)
     _quiet(setattr, panel.controls["pz"], "value", 1.5)
     assert "stroke" in panel.last_error
@@ -286,7 +288,7 @@ def test_manipulability_panel_reports_bad_scale():
     panel = _quiet(manipulability_panel)
     assert panel.last_error is None and set(panel.controls) == {"theta1", "theta2", "scale"}
     _quiet(setattr, panel.controls["scale"], "value", 0.0)
-    assert "scale" in panel.last_error and "> 0" in panel.last_error
+    assert "scale is 0" in panel.last_error and "above 0" in panel.last_error
     _quiet(setattr, panel.controls["scale"], "value", 0.2)
     _quiet(setattr, panel.controls["theta2"], "value", 0.0)  # singular: drawn, not an error
     assert panel.last_error is None

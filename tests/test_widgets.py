@@ -1,0 +1,189 @@
+"""The live panels' machinery, from Python: one figure widget per figure, built once; a move sends one update
+per figure holding only what changed; a refused setting shows its message and marks the figures stale; the
+panels never clamp what they are given and speak their own units. (``test_jupyterlab.py`` checks the same in a
+real JupyterLab.)"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("ipywidgets")
+
+import plotly.graph_objects as go  # noqa: E402
+
+from scara import ScaraError, ScaraParams, pose  # noqa: E402
+from scara.widgets import (  # noqa: E402
+    clik_panel, control_panel, dynamics_panel, inverse_kinematics_panel, kinematics_panel, manipulability_panel,
+    waypoint_editor,
+)
+from scara.widgets._common import STALE_TITLE, _delta, _same, readable  # noqa: E402
+
+
+class Spy:
+    """Records the update messages a FigureWidget sends to the browser."""
+
+    def __init__(self, fw):
+        self.messages = []
+        original = fw._send_update_msg
+
+        def send(restyle_data, relayout_data, trace_indexes=None, source_view_id=None):
+            self.messages.append((restyle_data, relayout_data, trace_indexes))
+            return original(restyle_data, relayout_data, trace_indexes, source_view_id)
+
+        fw._send_update_msg = send
+
+
+def _widgets(w):
+    yield w
+    for child in getattr(w, "children", ()):
+        yield from _widgets(child)
+
+
+def test_figures_are_widgets_inside_the_panel_built_once():
+    panel = kinematics_panel()
+    assert all(isinstance(fw, go.FigureWidget) for fw in panel.figures) and len(panel.figures) == 1
+    inside = [w for w in _widgets(panel.widget) if isinstance(w, go.FigureWidget)]
+    assert inside == panel.figures
+    fw = panel.figures[0]
+    panel.controls["theta1"].value = 25.0
+    assert panel.figures[0] is fw  # the same widget, updated in place
+
+
+def test_one_move_sends_one_update_with_only_what_changed():
+    panel = kinematics_panel()
+    spy = Spy(panel.figures[0])
+    panel.controls["theta2"].value = 30.0
+    assert len(spy.messages) == 1
+    restyle, relayout, _ = spy.messages[0]
+    assert set(relayout) == {"title"}  # the title states the new pose; nothing else of the layout moved
+    assert "x" in restyle and "y" in restyle and "line" not in restyle and "name" not in restyle
+    # the figure now shows what the package computes for the sliders' q
+    q = np.radians([0.0, 30.0, 0.0, 0.0]) + np.array([0.0, 0.0, panel.controls["d3"].value, 0.0])
+    ee = panel.figures[0].data[1]
+    np.testing.assert_allclose([ee.x[0], ee.y[0], ee.z[0]], pose(q)[:3], atol=1e-4)
+    # a move that changes nothing the figure shows sends nothing
+    panel.update()
+    assert len(spy.messages) == 1
+
+
+def test_template_is_sent_once():
+    panel = manipulability_panel()
+    assert panel.figures[0].layout.template.layout.plot_bgcolor is not None
+    spy = Spy(panel.figures[0])
+    panel.controls["theta1"].value = 40.0
+    assert "template" not in spy.messages[0][1]
+    assert panel.figures[0].layout.template.layout.plot_bgcolor is not None
+
+
+def test_refused_setting_marks_figures_stale_and_recovers():
+    panel = inverse_kinematics_panel()
+    fw = panel.figures[0]
+    before = [tuple(t.x) for t in fw.data]
+    panel.controls["px"].value = 1.2
+    assert panel.last_error and "out of reach" in panel.last_error
+    assert "Cannot show this setting" in panel.message.value
+    assert fw.layout.title.text == STALE_TITLE and all(t.visible is False for t in fw.data)
+    assert "scara-stale" in panel._boxes[0]._dom_classes
+    assert "scara-panel-values" in panel.info.value and panel.info.value.count("<tr>") == 0  # no stale table
+    panel.controls["px"].value = 0.18
+    assert panel.last_error is None and panel.message.value == ""
+    assert all(t.visible is not False for t in fw.data) and fw.layout.title.text != STALE_TITLE
+    assert "scara-stale" not in panel._boxes[0]._dom_classes
+    assert [tuple(t.x) for t in fw.data] == before
+
+
+def test_hold_recomputes_once():
+    panel = kinematics_panel()
+    calls = []
+    compute = panel.compute
+    panel.compute = lambda **v: calls.append(v) or compute(**v)
+    with panel.hold():
+        panel.controls["theta1"].value = 10.0
+        panel.controls["theta2"].value = 20.0
+    assert len(calls) == 1 and calls[0]["theta1"] == 10.0 and calls[0]["theta2"] == 20.0
+
+
+def test_waypoint_pick_redraws_once_and_highlights_the_point():
+    ed = waypoint_editor()
+    spies = [Spy(fw) for fw in ed.panel.figures]
+    ed.panel.controls["point"].value = 7
+    assert sum(len(s.messages) for s in spies) == 1  # the top view moves its marker; the profiles stay
+    c = ed.panel.controls
+    assert (c["x"].value, c["y"].value, c["z"].value) == (0.70, 0.15, 0.3)
+    marker = ed.panel.figures[0].data[-1]
+    assert marker.name == "editing p7" and (marker.x[0], marker.y[0]) == (0.70, 0.15)
+
+
+@pytest.mark.parametrize("n", [2, 3])
+def test_waypoint_editor_opens_on_any_valid_plan(n):
+    pts = [(0.3, 0.2, 0.5), (0.5, 0.2, 0.5), (0.5, 0.4, 0.4)][:n]
+    ed = waypoint_editor(dict(waypoints=pts, durations=[2.0] * (n - 1)))
+    assert ed.panel.last_error is None
+    c = ed.panel.controls
+    c["duration"].value = 3.0
+    assert ed.panel.last_error is None and ed.trajectory.durations[c["segment"].value] == 3.0
+    c["x"].value = 0.99  # out of reach: refused, then usable again
+    assert "unreachable" in ed.panel.last_error
+    c["x"].value = 0.35
+    assert ed.panel.last_error is None
+
+
+def test_panels_never_clamp_their_start_values():
+    with pytest.raises(ScaraError, match="d3 = 5"):
+        kinematics_panel(q=[0.0, 0.0, 5.0, 0.0])
+    with pytest.raises(ScaraError, match="payload = -1"):
+        control_panel(payload=-1.0)
+    with pytest.raises(ScaraError, match="payload = 1e"):
+        dynamics_panel(payload=1e6)
+    with pytest.raises(ScaraError, match="theta2 = 400"):
+        manipulability_panel(theta2=math.radians(400.0))
+    with pytest.raises(ScaraError):
+        inverse_kinematics_panel(x=[1.5, 0.0, 0.5, 0.0])
+
+
+def test_messages_in_the_panels_units():
+    assert readable("waypoint p8 x = [0.99 0.2  0.5 ] is unreachable") == \
+        "waypoint p8 (x, y, z) = (0.99, 0.2, 0.5) m is unreachable"
+    assert "φ = 90°" in readable(f"its point x = [0.7 0.15 0.3 {math.pi / 2}] is unreachable")
+    panel = inverse_kinematics_panel()
+    panel.controls["phi"].value = 45.0
+    panel.controls["pz"].value = 1.5
+    assert "φ = 45.0°" in panel.last_error and "d3 = d0 − z = -0.500 m" in panel.last_error
+    # a singular arm: the force ellipse is unbounded, said in words, not as 1e18 N
+    m = manipulability_panel()
+    m.controls["theta2"].value = 0.0
+    assert m.last_error is None and "unbounded" in m.info.value and "singular" in m.notes.value
+    assert "e+1" not in m.info.value
+    # a weak quill gain: the sag is flagged; past the stroke the setting is refused
+    d = dynamics_panel()
+    d.controls["K_P3"].value = 1e4
+    d.controls["payload"].value = 20.0
+    assert "19.6 mm" in d.notes.value
+    d.controls["K_P3"].value = 100.0
+    assert "stroke" in d.last_error and "K_P3 = 100 N/m" in d.last_error
+
+
+def test_clik_refusal_names_the_gains():
+    from scara import reference_trajectory
+
+    panel = clik_panel(reference_trajectory())
+    panel.controls["Kz"].value = 2500.0
+    assert "K_z = 2500 1/s" in panel.last_error and "limit" in panel.last_error
+    assert panel.figures[0].layout.title.text == STALE_TITLE
+
+
+def test_diff_helpers():
+    a = np.array([1.0, np.nan])
+    assert _same(a, a.copy()) and not _same(a, np.array([1.0, 2.0])) and _same({"x": [1, 2]}, {"x": (1, 2)})
+    assert _delta({"a": 1, "b": 2}, {"a": 1, "c": 3}) == {"c": 3, "b": None}
+    assert _delta({"template": 1}, {}, keep=("template",)) == {}
+
+
+def test_panels_use_the_robot_they_are_given():
+    long = ScaraParams().replace(a1=0.6)
+    panel = kinematics_panel(p=long)
+    ee = panel.figures[0].data[1]
+    q = panel.state["q"]
+    np.testing.assert_allclose([ee.x[0], ee.y[0]], pose(q, long)[:2], atol=1e-4)
