@@ -29,12 +29,12 @@ from test_jupyterlab import PANELS, _act, _control  # noqa: E402
 
 
 def _pairs(moves):
-    """One (control, forth, back) per control of a panel: the move and the move that undoes it."""
-    seen, out = set(), []
+    """The panel's moves in order (a dropdown pick sets the context of the controls after it), one per
+    control in a row: (control, forth, back), the move and the move that undoes it."""
+    out = []
     for desc, action, arg in moves:
-        if desc in seen:
+        if out and out[-1][0] == desc and action == "key":
             continue
-        seen.add(desc)
         if action == "key":
             out.append((desc, ("key", "ArrowRight"), ("key", "ArrowLeft")))
         elif action == "click":
@@ -73,7 +73,7 @@ def measure(chapters, repeats: int) -> dict:
                             data["moves"].append(dict(
                                 chapter=chapter[:2], panel=spec["name"], control=desc, three_d=spec["three_d"],
                                 refused=bool(lab.message(panel)), latency_ms=t["latency_ms"], redraws=t["redraws"],
-                                compute_ms=st.get("compute_ms"),
+                                compute_ms=st.get("compute_ms"), draw_ms=st.get("draw_ms"), send_ms=st.get("send_ms"),
                                 python_ms=sum(st.get(x, 0.0) for x in ("compute_ms", "draw_ms", "send_ms"))))
             finally:
                 lab.close()
@@ -108,10 +108,11 @@ def table(data) -> str:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--repeats", type=int, default=5, help="moves per control, odd (forth, back, ..., forth)")
     ap.add_argument("--chapters", nargs="*", default=None, help="chapter prefixes, e.g. 01 04")
     ap.add_argument("--startup", action="store_true", help="also the import and Run All times (startup.py)")
     args = ap.parse_args(argv)
+    args.repeats += 1 - args.repeats % 2  # odd: each control ends moved forth, as the next moves expect
     chapters = [c for c in PANELS if not args.chapters or c[:2] in args.chapters]
     if not drv.chromium_available():
         sys.exit(f"Chromium not found at {drv.CHROMIUM} (apt-get install chromium)")

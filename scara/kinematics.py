@@ -255,6 +255,16 @@ def _unreachable_message(x, code, p, label="point"):
             f"d3 = d0 - p_z = {d3:.10g} m, outside the stroke 0 <= d3 <= d0 = {p.d0:g} m")
 
 
+@kernel
+def ikine_batch_kernel(xs, a1, a2, d0, elbow, out):
+    """:func:`ikine_kernel` for every row of ``xs`` (N, 4), written into ``out`` (N, 4), in one compiled loop.
+    Returns -1 when every row is reachable, else the index of the first row that is not."""
+    for k in range(xs.shape[0]):
+        if ikine_kernel(xs[k], a1, a2, d0, elbow, out[k]) != 0:
+            return k
+    return -1
+
+
 def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
     """Closed-form inverse kinematics: the joint vector ``q`` with ``pose(q) == x`` (SPEC section 2).
 
@@ -285,10 +295,10 @@ def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
     batch = x.ndim == 2
     xs = x if batch else x[None, :]
     out = np.empty_like(xs)
-    for k in range(xs.shape[0]):
-        code = ikine_kernel(xs[k], p.a1, p.a2, p.d0, float(elbow), out[k])
-        if code:
-            raise UnreachableError(_unreachable_message(xs[k], code, p, f"sample {k}: point" if batch else "point"))
+    k = ikine_batch_kernel(xs, p.a1, p.a2, p.d0, float(elbow), out)
+    if k >= 0:
+        code = ikine_kernel(xs[k], p.a1, p.a2, p.d0, float(elbow), np.empty(4))
+        raise UnreachableError(_unreachable_message(xs[k], code, p, f"sample {k}: point" if batch else "point"))
     return out if batch else out[0]
 
 

@@ -95,7 +95,7 @@ class WaypointEditor:
         plan["durations"][segment] = duration
         traj = plan_path(**plan)
         self.plan, self.trajectory = plan, traj
-        return dict(traj=traj, point=point)
+        return dict(traj=traj, point=point, summary=traj.summary())
 
     def _draw(self, s):
         traj, k = s["traj"], s["point"]
@@ -110,7 +110,7 @@ class WaypointEditor:
         if self.profiles:
             figs.append(profiles_figure(traj, points=1000, height=620,
                                         title="Its position, velocity and acceleration (orange: via overlaps)"))
-        summ = traj.summary()
+        summ = s["summary"]
         corner = ", ".join(f"{name}: {1000 * v:.1f} mm" for name, v in summ["corner_distances"].items()) or "none"
         rows = [("motion ends at (s)", f"{summ['motion_end']:.1f}"),
                 ("peak speed (cm/s)", f"{100 * summ['max_speed']:.2f}"),
