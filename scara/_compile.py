@@ -7,9 +7,15 @@ plain-Python path, which the tests use to check that both paths agree.
 
 Kernels take and return floats and numpy arrays only (no parameter objects), and write their results into
 output arrays passed by the caller, so that a compiled loop allocates nothing per step.
+
+Nothing is compiled at import: a :func:`kernel` compiles (or loads from the on-disk cache) on its first call,
+and a kernel that needs an explicit signature (a first-class function argument) is made with
+:func:`signature_kernel`, which compiles that signature on its first call too. :func:`ensure_signature`
+compiles a lazy kernel for one given signature before it is passed as a first-class function.
 """
 from __future__ import annotations
 
+import functools
 import os
 
 try:  # pragma: no cover - depends on the environment
@@ -23,22 +29,31 @@ except ImportError:  # pragma: no cover
 COMPILED = _numba is not None and os.environ.get("NUMBA_DISABLE_JIT", "0") != "1"
 
 
+#: Sub-packages that hold no compiled code (figures and panels): their source does not key the cache.
+UNCOMPILED_PACKAGES = ("plots", "widgets")
+
+
 def _source_digest() -> str:
-    """A digest of every source file of the package."""
+    """A digest of every source file of the package that may hold or call compiled code (all but
+    :data:`UNCOMPILED_PACKAGES`)."""
     import hashlib
     from pathlib import Path
 
     h = hashlib.sha1()
     root = Path(__file__).resolve().parent
     for f in sorted(root.rglob("*.py")):
-        h.update(str(f.relative_to(root)).encode())
+        rel = f.relative_to(root)
+        if rel.parts[0] in UNCOMPILED_PACKAGES:
+            continue
+        h.update(str(rel).encode())
         h.update(f.read_bytes())
     return h.hexdigest()[:16]
 
 
 # numba's on-disk cache checks only the decorated function's own file: a kernel that calls kernels of
 # another module would keep running their old code after that module changed. Keying the cache folder on
-# the whole package's source makes any change start a fresh cache. A NUMBA_CACHE_DIR set by the user wins.
+# the source of every module that may hold kernels makes any change there start a fresh cache (editing a
+# figure or a panel does not). A NUMBA_CACHE_DIR set by the user wins.
 if _numba is not None and not os.environ.get("NUMBA_CACHE_DIR"):
     from pathlib import Path as _Path
 
@@ -57,3 +72,76 @@ def kernel(fn=None, **options):
         return _numba.njit(cache=True, **options)(f)
 
     return wrap if fn is None else wrap(fn)
+
+
+def signature_kernel(signature):
+    """Like ``numba.njit(signature, cache=True)``, but compiled (or loaded from the cache) on the first call
+    instead of at import.
+
+    The returned object calls the compiled dispatcher (its attributes are the dispatcher's: ``signatures``,
+    ``py_func``...); :func:`dispatcher_of` gives the dispatcher itself. Without numba (or under
+    ``NUMBA_DISABLE_JIT=1``) the function is returned unchanged.
+    """
+
+    def wrap(f):
+        if not COMPILED:
+            return f
+        return _SignatureKernel(f, signature)
+
+    return wrap
+
+
+class _SignatureKernel:
+    """A function compiled with an explicit signature on its first call (see :func:`signature_kernel`)."""
+
+    def __init__(self, fn, signature):
+        functools.update_wrapper(self, fn)
+        self.py_func = fn
+        self._signature = signature
+        self._dispatcher = None
+
+    @property
+    def dispatcher(self):
+        """The numba dispatcher, compiled for the signature (on first access)."""
+        if self._dispatcher is None:
+            self._dispatcher = _numba.njit(self._signature, cache=True)(self.py_func)
+        return self._dispatcher
+
+    def __call__(self, *args):
+        return self.dispatcher(*args)
+
+    def __getattr__(self, name):
+        if name.startswith("__") or name in ("py_func", "_signature", "_dispatcher"):
+            raise AttributeError(name)
+        return getattr(self.dispatcher, name)
+
+    def __repr__(self):
+        state = "compiled" if self._dispatcher is not None else "compiled on first call"
+        return f"<signature kernel {self.__name__} ({state})>"
+
+
+def dispatcher_of(fn):
+    """The numba dispatcher behind ``fn`` (a :func:`signature_kernel` is compiled now); ``fn`` itself otherwise."""
+    return fn.dispatcher if isinstance(fn, _SignatureKernel) else fn
+
+
+def ensure_signature(fn, signature):
+    """Compile the lazy kernel ``fn`` for ``signature`` (return type included) unless it has that overload.
+
+    Needed before a lazy kernel is passed as a first-class function (``numba.types.FunctionType``): numba
+    would otherwise compile it for the argument types alone and infer the return type. Returns the
+    dispatcher. Raises ``TypeError`` when ``fn`` already has an overload for those arguments with another
+    return type. Does nothing without numba or for an object that is not a numba dispatcher (a ``cfunc``, a
+    plain function under ``SCARA_NO_NUMBA=1``).
+    """
+    fn = dispatcher_of(fn)
+    if _numba is None or not isinstance(fn, _numba.core.dispatcher.Dispatcher):
+        return fn
+    args = tuple(signature.args)
+    cres = fn.overloads.get(args)
+    if cres is None:
+        fn.compile(signature)
+    elif cres.signature.return_type != signature.return_type:
+        raise TypeError(f"{fn.__name__} returns {cres.signature.return_type}, but it must return "
+                        f"{signature.return_type} (signature {signature})")
+    return fn

@@ -39,9 +39,10 @@ A controller is any object (subclass :class:`Controller` for the defaults) with
     result), rows of the scratch array, and the label used in tables and legends.
 
 The engine's loop :func:`closed_loop_kernel` takes the law as a first-class function argument of type
-``numba.types.FunctionType(LAW_SIGNATURE)``; because both the loop and the laws carry explicit signatures,
-numba's on-disk cache works for every controller (a dispatcher-typed argument would recompile the loop in
-every new process). Without numba (``SCARA_NO_NUMBA=1``) the same loop and laws run as plain Python.
+``numba.types.FunctionType(LAW_SIGNATURE)``; because both the loop and the laws are compiled for explicit
+signatures, numba's on-disk cache works for every controller (a dispatcher-typed argument would recompile the
+loop in every new process). Both are compiled (or loaded from the cache) when first used, by :func:`simulate`,
+not at import. Without numba (``SCARA_NO_NUMBA=1``) the same loop and laws run as plain Python.
 
 :class:`PDGravityController` is the worked example; ``.notes/controller_interface.md`` walks through it.
 """
@@ -62,7 +63,7 @@ from .dynamics import (
 )
 from .errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
 from .kinematics import (
-    _params, ikine, jacobian, jacobian_dot, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel,
+    _params, ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel,
 )
 from .params import ScaraParams
 
@@ -90,19 +91,24 @@ else:  # pragma: no cover - plain Python
 
 
 def control_law(fn):
-    """Compile a controller's step kernel with the engine's :data:`LAW_SIGNATURE` (eagerly, cached on disk).
+    """Make ``fn`` a controller's step kernel: a numba dispatcher (cached on disk) that :func:`simulate`
+    compiles with the engine's :data:`LAW_SIGNATURE` when it first runs it (``_compiled_law``), not at
+    import.
 
     Without numba the function is returned unchanged. See the module docstring for the arguments.
     """
     if not _compile.COMPILED:
         return fn
-    return _compile._numba.njit(LAW_SIGNATURE, cache=True)(fn)
+    return _compile._numba.njit(cache=True)(fn)
 
 
-def _loop_kernel(fn):
+def _compiled_law(law):
+    """``law`` compiled for :data:`LAW_SIGNATURE` (loaded from the cache when it is there), ready to be passed
+    to :func:`closed_loop_kernel`; returned unchanged without numba or when it is not a numba dispatcher.
+    Raises ``TypeError`` when it was already compiled for the same arguments with another return type."""
     if not _compile.COMPILED:
-        return fn
-    return _compile._numba.njit(_LOOP_SIGNATURE, cache=True)(fn)
+        return law
+    return _compile.ensure_signature(law, LAW_SIGNATURE)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -255,7 +261,7 @@ def rk4_step_kernel(q, qd, tau, dp, h, qdd0):
     return _rk4_step(q, qd, tau[0], tau[1], tau[2], tau[3], _plant_constants(dp), h, qdd0)
 
 
-@_loop_kernel
+@_compile.signature_kernel(_LOOP_SIGNATURE)
 def closed_loop_kernel(law, q0, qd0, ref, dt, substeps, plant_dp, gains, model, state, work,
                        q_out, qd_out, qdd_out, tau_out, sig_out, limit, info):
     """The engine's loop over ``N = ref.shape[0]`` samples (see the module docstring).
@@ -489,15 +495,32 @@ def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.n
     q = ikine(x, p, elbow=elbow)
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 3] = x[:, 3] - q[:, 0] - q[:, 1]
-    qd = np.empty_like(q)
-    qdd = np.empty_like(q)
-    for k in range(len(q)):
-        J = jacobian(q[k], p)
-        if abs(np.linalg.det(J)) < 1e-9:
-            raise ScaraError(f"sample {k}: q = {q[k].round(4).tolist()} is singular (sin theta2 = 0)")
-        qd[k] = np.linalg.solve(J, xd[k])
-        qdd[k] = np.linalg.solve(J, xdd[k] - jacobian_dot(q[k], qd[k], p) @ qd[k])
+    # every sample at once: the same kernels and the same LAPACK calls as sample by sample
+    J = np.empty((len(q), 4, 4))
+    _jacobian_rows(q, p.a1, p.a2, J)
+    singular = np.abs(np.linalg.det(J)) < 1e-9
+    if singular.any():
+        k = int(np.argmax(singular))
+        raise ScaraError(f"sample {k}: q = {q[k].round(4).tolist()} is singular (sin theta2 = 0)")
+    qd = np.linalg.solve(J, xd[:, :, None])[:, :, 0]
+    Jd = np.empty_like(J)
+    _jacobian_dot_rows(q, qd, p.a1, p.a2, Jd)
+    qdd = np.linalg.solve(J, (xdd - (Jd @ qd[:, :, None])[:, :, 0])[:, :, None])[:, :, 0]
     return np.hstack([q, qd, qdd])
+
+
+@kernel
+def _jacobian_rows(q, a1, a2, out):
+    """``out[k] = J_A(q[k])`` for every row of ``q`` (N, 4); ``out`` (N, 4, 4)."""
+    for k in range(q.shape[0]):
+        jacobian_kernel(q[k], a1, a2, out[k])
+
+
+@kernel
+def _jacobian_dot_rows(q, qd, a1, a2, out):
+    """``out[k] = Jdot_A(q[k], qd[k])`` for every row; ``out`` (N, 4, 4)."""
+    for k in range(q.shape[0]):
+        jacobian_dot_kernel(q[k], qd[k], a1, a2, out[k])
 
 
 def joint_setpoint(q_d, duration: float, dt: float = 1e-3) -> np.ndarray:
@@ -774,9 +797,11 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     q_out, qd_out, qdd_out, tau_out, x, e = block
     sig_out = np.zeros((n, len(names)))
     info = np.zeros(3, dtype=np.int64)
+    law = _compiled_law(controller.law)  # compile (or load) the law and the loop before the clock starts
+    loop = _compile.dispatcher_of(closed_loop_kernel)
     t0 = time.perf_counter()
-    closed_loop_kernel(controller.law, q0, qd0, ref, dt, substeps, dynamic_array(plant), gains, model, state,
-                       work, q_out, qd_out, qdd_out, tau_out, sig_out, float(limit), info)
+    loop(law, q0, qd0, ref, dt, substeps, dynamic_array(plant), gains, model, state, work, q_out, qd_out, qdd_out,
+         tau_out, sig_out, float(limit), info)
     elapsed = time.perf_counter() - t0
     if info[0] != OK:
         k = int(info[1])

@@ -11,16 +11,20 @@ with no arguments it carries the book's tuned gains and believes in ``ScaraParam
 
 :func:`control_summary` gives the figures of the chapter's comparison table.
 """
-from ._common import (
-    ERROR_BOUND, FAILURE_CAUSES, MAX_ERROR, SINGULAR_JACOBIAN, TAU_MAX, TORQUE_BOUND, BoundedController, chattering,
-    control_summary, law_cost, positive_gains, replay_law,
-)
-from .adaptive import AdaptiveController, adaptation_gains
-from .operational import OperationalSpaceController
-from .robust import (
-    B_HAT, RobustController, design_inertia_estimate, inertia_eigenvalues, inertia_uncertainty, lyapunov_matrix, rho_bound, sliding_matrix,
-    sliding_weight,
-)
+from .._lazy import lazy_names as _lazy_names
+
+#: the names of the package, each loaded from its sub-module on first use
+_NAMES = {
+    **dict.fromkeys(("ERROR_BOUND", "FAILURE_CAUSES", "MAX_ERROR", "SINGULAR_JACOBIAN", "TAU_MAX", "TORQUE_BOUND",
+                     "BoundedController", "chattering", "control_summary", "law_cost", "positive_gains",
+                     "replay_law"), "_common"),
+    **dict.fromkeys(("AdaptiveController", "adaptation_gains"), "adaptive"),
+    "OperationalSpaceController": "operational",
+    **dict.fromkeys(("B_HAT", "RobustController", "design_inertia_estimate", "inertia_eigenvalues",
+                     "inertia_uncertainty", "lyapunov_matrix", "rho_bound", "sliding_matrix", "sliding_weight"),
+                    "robust"),
+}
+__getattr__, __dir__ = _lazy_names(__name__, _NAMES, ("adaptive", "operational", "robust"))
 
 __all__ = [
     "RobustController", "AdaptiveController", "OperationalSpaceController", "BoundedController",

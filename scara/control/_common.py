@@ -16,7 +16,7 @@ import numpy as np
 from .. import _compile
 from ..errors import ScaraError, ShapeError, UnstableError
 from ..params import ScaraParams
-from ..simulate import LAW_SIGNATURE, Controller
+from ..simulate import LAW_SIGNATURE, Controller, _compiled_law
 
 __all__ = [
     "TAU_MAX", "MAX_ERROR", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
@@ -128,8 +128,9 @@ if _compile.COMPILED:
 
     _v = _t.float64[::1]
     _m = _t.float64[:, ::1]
-    _replay_kernel = _compile._numba.njit(
-        _t.int64(_t.FunctionType(LAW_SIGNATURE), _m, _m, _m, _t.float64, _v, _v, _v, _m, _m, _m), cache=True)(_replay)
+    # compiled (or loaded from the cache) on the first replay, not at import
+    _replay_kernel = _compile.signature_kernel(
+        _t.int64(_t.FunctionType(LAW_SIGNATURE), _m, _m, _m, _t.float64, _v, _v, _v, _m, _m, _m))(_replay)
 else:  # pragma: no cover - plain Python
     _replay_kernel = _replay
 
@@ -152,7 +153,8 @@ def replay_law(controller, result, n: int | None = None):
     work = np.zeros((max(int(controller.work_rows), 1), 4))
     sig = np.zeros((n, len(controller.signal_names)))
     tau = np.zeros((n, 4))
-    k = _replay_kernel(controller.law, q, qd, ref, float(result.dt), gains, model, state, work, sig, tau)
+    k = _replay_kernel(_compiled_law(controller.law), q, qd, ref, float(result.dt), gains, model, state, work, sig,
+                       tau)
     if k >= 0:
         raise UnstableError(f"the law of {controller.name} returned a failure at sample {k} while replaying")
     return tau, sig, state

@@ -17,7 +17,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.linalg
 
 from ..dynamics import DP_FM, DP_KR, gravity_kernel, inertia
 from ..errors import ScaraError, UnstableError, as_array, check_positive
@@ -73,8 +72,10 @@ def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
         raise ScaraError("P must be symmetric")
     if np.linalg.eigvalsh(P).min() <= 0:
         raise ScaraError(f"P must be positive definite; its smallest eigenvalue is {np.linalg.eigvalsh(P).min():.3g}")
+    from scipy.linalg import solve_continuous_lyapunov  # noqa: PLC0415 - not at import: scipy.linalg is slow to load
+
     H = np.block([[np.zeros((4, 4)), np.eye(4)], [-np.diag(K_P), -np.diag(K_D)]])
-    Q = scipy.linalg.solve_continuous_lyapunov(H.T, -P)
+    Q = solve_continuous_lyapunov(H.T, -P)
     return 0.5 * (Q + Q.T)
 
 
@@ -90,7 +91,8 @@ def _inertias(q, payloads, p):
     pays = np.atleast_1d(np.asarray(payloads, dtype=float))
     if np.any(pays < 0) or not np.all(np.isfinite(pays)):
         raise ScaraError(f"payloads = {pays.tolist()} must be finite masses >= 0 kg")
-    return q, np.array([inertia(qk, p.with_payload(float(m))) for m in pays for qk in q])
+    plants = [p.with_payload(float(m)) for m in pays]  # one parameter object per payload, not per configuration
+    return q, np.array([inertia(qk, pm) for pm in plants for qk in q])
 
 
 def inertia_eigenvalues(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = None) -> tuple[float, float]:
