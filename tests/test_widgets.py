@@ -187,3 +187,46 @@ def test_panels_use_the_robot_they_are_given():
     ee = panel.figures[0].data[1]
     q = panel.state["q"]
     np.testing.assert_allclose([ee.x[0], ee.y[0]], pose(q, long)[:2], atol=1e-4)
+
+
+def _same_data(state, fig_json, traces=None):
+    from scara.widgets._common import _widget_safe
+
+    full = _widget_safe(fig_json)
+    for i, (a, b) in enumerate(zip(state["data"], full["data"])):
+        if traces is not None and i not in traces:
+            continue
+        for key in ("x", "y", "name", "text"):
+            assert _same(a.get(key), b.get(key)), (i, key)
+
+
+def test_fast_redraws_equal_full_figures():
+    """After the first draw the panels send only new data and titles (no layout rebuilt): what they show
+    must equal the figure the builder draws from scratch for the same run."""
+    from scara import reference_trajectory
+    from scara.plots.control import tuning_figure
+    from scara.plots.trajectory import profiles_figure, top_view_figure
+
+    traj = reference_trajectory()
+    c = control_panel(traj)
+    c.controls["K_P"].value = 1500.0
+    st = c.state
+    full = tuning_figure(st["result"], st["summary"], "x")
+    _same_data(c._states[0], full.to_plotly_json())
+    assert c.figures[0].layout.title.text.split("<br>")[0] == full.layout.title.text.split("<br>")[0]
+
+    ed = waypoint_editor()
+    ed.panel.controls["x"].value = 0.08
+    traj2 = ed.trajectory
+    _same_data(ed.panel._states[0], top_view_figure(traj2, points=1200).to_plotly_json())
+    _same_data(ed.panel._states[1], profiles_figure(traj2, points=1000).to_plotly_json())
+    assert ed.panel._states[1]["layout"]["shapes"] == profiles_figure(traj2).to_plotly_json()["layout"]["shapes"]
+
+    k = clik_panel(traj)
+    first = k._states[0]["data"][0]["y"].copy()
+    k.controls["Kx"].value = 600.0
+    from scara.plots.clik import envelope
+
+    r = k.state["result"]
+    assert not _same(first, k._states[0]["data"][0]["y"])
+    assert _same(k._states[0]["data"][0]["y"], envelope(r.t, r.position_error, 1500)[1].astype(float))

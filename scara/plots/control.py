@@ -24,7 +24,8 @@ from .kinematics import finish_layout
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
-    "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "tuning_figure",
+    "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "tuning_figure", "tuning_series",
+    "tuning_title",
 ]
 
 #: legend names of the controllers (keys: the controllers' ``name``, also the keys of ``PALETTE``)
@@ -332,34 +333,57 @@ def payload_sweep_figure(masses, errors: dict, title: str | None = None, height:
     return fig
 
 
-def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, height: int = 640) -> go.Figure:
-    """The live panel's figure for one run: the position error norm (log), the quill's force and the other
-    torques, and the run's own signal (payload estimate, ``||z||`` or the integral action)."""
-    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
-                        specs=[[{}], [{"secondary_y": True}], [{}]])
+def tuning_series(result, points: int = 1200) -> list:
+    """The ``(t, y)`` arrays of :func:`tuning_figure`'s six traces, in order: the position error norm (upper
+    envelope), the quill's force, the other three torques, and the run's own signal (payload estimate,
+    ``||z||`` envelope or ``e_z`` in mm), as float32 (what the figure holds). A live panel redraws a run of
+    the same controller from these alone."""
     tt, yy = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
-    fig.add_trace(_line(tt, yy, _label(result), _colour(result), width=1.8), row=1, col=1)
     idx = thin(len(result.t), points)
-    fig.add_trace(_line(result.t[idx], result.tau[idx, 2], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
-    for j in (0, 1, 3):
-        fig.add_trace(_line(result.t[idx], result.tau[idx, j], f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1),
-                      row=2, col=1, secondary_y=True)
+    t = result.t[idx]
+    out = [(tt, yy), (t, result.tau[idx, 2])] + [(t, result.tau[idx, j]) for j in (0, 1, 3)]
     sig = result.signals
     if "payload_estimate" in sig:
-        fig.add_trace(_line(result.t[idx], sig["payload_estimate"][idx], "m̂_L (kg)", PALETTE["adaptive"]), row=3, col=1)
-        lab = "m̂_L (kg)"
+        out.append((t, sig["payload_estimate"][idx]))
     elif "z_norm" in sig:
-        t3, z3 = envelope(result.t, sig["z_norm"], points)
-        fig.add_trace(_line(t3, z3, "‖z‖", PALETTE["robust"]), row=3, col=1)
-        fig.update_yaxes(type="log", exponentformat="power", row=3, col=1)
-        lab = "‖z‖"
+        out.append(envelope(result.t, sig["z_norm"], points))
     else:
-        fig.add_trace(_line(result.t[idx], 1e3 * result.e[idx, 2], "e_z (mm)", AXIS_COLOURS[2]), row=3, col=1)
-        lab = "e_z (mm)"
+        out.append((t, 1e3 * result.e[idx, 2]))
+    return [(_f(x), _f(y)) for x, y in out]
+
+
+def tuning_title(result, summary: dict, extra: str = "") -> str:
+    """The title of :func:`tuning_figure`: the run's figures (error after 1 s and at rest, peak quill force,
+    chattering) and ``extra``."""
     s = summary
     head = (f"{_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
             f"{1e3 * s['final_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
-    finish_layout(fig, head + (f"<br>{extra}" if extra else ""), height)
+    return head + (f"<br>{extra}" if extra else "")
+
+
+def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, height: int = 640) -> go.Figure:
+    """The live panel's figure for one run: the position error norm (log), the quill's force and the other
+    torques, and the run's own signal (payload estimate, ``||z||`` or the integral action); data from
+    :func:`tuning_series`, title from :func:`tuning_title`."""
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
+                        specs=[[{}], [{"secondary_y": True}], [{}]])
+    series = tuning_series(result, points)
+    fig.add_trace(_line(*series[0], _label(result), _colour(result), width=1.8), row=1, col=1)
+    fig.add_trace(_line(*series[1], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
+    for (x, y), j in zip(series[2:5], (0, 1, 3)):
+        fig.add_trace(_line(x, y, f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1), row=2, col=1, secondary_y=True)
+    sig = result.signals
+    if "payload_estimate" in sig:
+        fig.add_trace(_line(*series[5], "m̂_L (kg)", PALETTE["adaptive"]), row=3, col=1)
+        lab = "m̂_L (kg)"
+    elif "z_norm" in sig:
+        fig.add_trace(_line(*series[5], "‖z‖", PALETTE["robust"]), row=3, col=1)
+        fig.update_yaxes(type="log", exponentformat="power", row=3, col=1)
+        lab = "‖z‖"
+    else:
+        fig.add_trace(_line(*series[5], "e_z (mm)", AXIS_COLOURS[2]), row=3, col=1)
+        lab = "e_z (mm)"
+    finish_layout(fig, tuning_title(result, summary, extra), height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
     fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)
     fig.update_yaxes(title_text="τ (N m)", row=2, col=1, secondary_y=True)

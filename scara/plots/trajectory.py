@@ -22,7 +22,10 @@ __all__ = [
     "timing_law_figure",
     "path_figure",
     "top_view_figure",
+    "top_view_series",
     "profiles_figure",
+    "profiles_series",
+    "segment_shapes",
     "corner_figure",
     "anticipation_slider_figure",
     "joint_profiles_figure",
@@ -133,15 +136,24 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
                                     camera=dict(eye=dict(x=0.7, y=-1.8, z=0.8))))
 
 
+def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
+    """The data :func:`top_view_figure` draws: the path's ``x``, ``y`` (decimated to about ``points``) and the
+    stop and via points (``x``, ``y``, labels), so that a live panel can redraw an edited path from these."""
+    traj = _check(traj)
+    k = decimate(traj, points)
+    wp = [dict(x=t.x, y=t.y, text=t.text, hovertext=t.hovertext) for t in _waypoint_traces(traj, 2)]
+    return dict(path=(_r(traj.x[k, 0]), _r(traj.x[k, 1])), stop=wp[0], via=wp[1])
+
+
 def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, title: str | None = None,
                     height: int = 460) -> go.Figure:
     """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration."""
     traj = _check(traj)
-    k = decimate(traj, points)
+    series = top_view_series(traj, points)
     fig = go.Figure()
     if arm:
         fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at t = 0", opacity=0.5))
-    fig.add_trace(go.Scatter(x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), mode="lines", name="path",
+    fig.add_trace(go.Scatter(x=series["path"][0], y=series["path"][1], mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
     for tr in _waypoint_traces(traj, 2):
         fig.add_trace(tr)
@@ -151,7 +163,7 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
     return fig
 
 
-def _segment_shapes(traj, lo=None, hi=None):
+def segment_shapes(traj, lo=None, hi=None):
     """Alternating light bands over the segments and orange bands over the via-point overlaps."""
     shapes = []
     lo = traj.t[0] if lo is None else lo
@@ -169,31 +181,41 @@ def _segment_shapes(traj, lo=None, hi=None):
     return shapes
 
 
+def profiles_series(traj: Trajectory, points: int = 2000) -> list:
+    """The ``(t, y)`` arrays of :func:`profiles_figure`'s traces, in order: ``p_x, p_y, p_z`` of the position,
+    then of the velocity, then of the acceleration, then ``phi`` (degrees)."""
+    traj = _check(traj)
+    k = decimate(traj, points)
+    t = _r(traj.t[k], 4)
+    out = [(t, _r(arr[k, c], 6)) for arr in (traj.x, traj.xd, traj.xdd) for c in range(3)]
+    return out + [(t, _r(np.degrees(traj.x[k, 3]), 4))]
+
+
 def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 560) -> go.Figure:
     """Position, velocity and acceleration of x, y, z against time, and phi, with the segments shaded
     (grey: every other segment; orange: overlaps at via points, where two segments move at once)."""
     traj = _check(traj)
-    k = decimate(traj, points)
-    t = _r(traj.t[k], 4)
+    series = profiles_series(traj, points)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
                         row_heights=[0.3, 0.3, 0.3, 0.1])
-    series = ((traj.x, "p (m)"), (traj.xd, "ṗ (m/s)"), (traj.xdd, "p̈ (m/s²)"))
-    for row, (arr, label) in enumerate(series, start=1):
+    labels = ("p (m)", "ṗ (m/s)", "p̈ (m/s²)")
+    for row, label in enumerate(labels, start=1):
         for c in range(3):
-            fig.add_trace(go.Scatter(x=t, y=_r(arr[k, c], 6), mode="lines", name=f"p_{_COMP[c]}",
+            x, y = series[3 * (row - 1) + c]
+            fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=f"p_{_COMP[c]}",
                                      legendgroup=_COMP[c], showlegend=row == 1,
                                      line=dict(color=AXIS_COLOURS[c], width=1.6, dash=DASHES[c])), row=row, col=1)
         fig.update_yaxes(title_text=label, row=row, col=1)
-    fig.add_trace(go.Scatter(x=t, y=_r(np.degrees(traj.x[k, 3]), 4), mode="lines", name="φ",
+    fig.add_trace(go.Scatter(x=series[9][0], y=series[9][1], mode="lines", name="φ",
                              line=dict(color=AXIS_COLOURS[3], width=1.6, dash=DASHES[3])), row=4, col=1)
     fig.update_yaxes(title_text="φ (°)", nticks=3, row=4, col=1)
     fig.update_xaxes(title_text="t (s)", row=4, col=1)
     _band_legend(fig)
-    return finish_layout(fig, title or "Position, velocity, acceleration", height, shapes=_segment_shapes(traj))
+    return finish_layout(fig, title or "Position, velocity, acceleration", height, shapes=segment_shapes(traj))
 
 
 def _band_legend(fig):
-    """Legend entries for the shaded bands of :func:`_segment_shapes` (shapes have none of their own)."""
+    """Legend entries for the shaded bands of :func:`segment_shapes` (shapes have none of their own)."""
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="via overlap", hoverinfo="skip",
                              line=dict(color=_VIA_COLOUR, width=10), opacity=0.4))
 
@@ -330,4 +352,4 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
     fig.update_yaxes(title_text="w (m²)", rangemode="tozero", row=3, col=1)
     fig.update_xaxes(title_text="t (s)", row=3, col=1)
     _band_legend(fig)
-    return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=_segment_shapes(traj))
+    return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=segment_shapes(traj))

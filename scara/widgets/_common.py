@@ -15,6 +15,7 @@ and marks every figure *stale* (its traces hidden, its title saying why) until a
 """
 from __future__ import annotations
 
+import base64
 import html
 import json
 import math
@@ -48,7 +49,13 @@ _STYLE = """<style>
 @dataclass
 class PanelView:
     """What a panel shows for one valid setting: its figures, an HTML table below them, and notes (plain
-    text) that flag a boundary case the numbers alone would hide."""
+    text) that flag a boundary case the numbers alone would hide.
+
+    A figure is a ``go.Figure`` or, when only its data and title changed since the last one the panel drew
+    (the same method or controller, other numbers), a partial update that skips rebuilding the layout:
+    ``{"data": [dict of trace properties, or None for an unchanged trace, ...], "title": str,
+    "layout": {top-level layout properties}}``.
+    """
 
     figures: list
     table: str = ""
@@ -112,16 +119,36 @@ def _delta(old: dict, new: dict, keep=()) -> dict:
 
 
 def _widget_safe(value):
-    """``value`` with every float array other than float64 made float64. plotly's FigureWidget (7.1) reads a
-    float32 array echoed back by the browser as a dict and fails on it (``ValueError: The truth value of an
-    array ... is ambiguous`` in ``_remove_overlapping_props``, sent to the Log Console on every update)."""
+    """``value`` with every float array other than float64 made float64, and plotly's base64 arrays
+    (``{"dtype", "bdata"}``, which ``to_plotly_json`` may return) decoded, so that figures compare by value.
+    plotly's FigureWidget (7.1) reads a float32 array echoed back by the browser as a dict and fails on it
+    (``ValueError: The truth value of an array ... is ambiguous`` in ``_remove_overlapping_props``, sent to the
+    Log Console on every update)."""
     if isinstance(value, np.ndarray):
         return value.astype(np.float64) if value.dtype.kind == "f" and value.dtype != np.float64 else value
     if isinstance(value, dict):
+        if "bdata" in value and "dtype" in value:
+            arr = np.frombuffer(base64.b64decode(value["bdata"]), dtype=np.dtype(value["dtype"]))
+            if value.get("shape"):
+                arr = arr.reshape([int(n) for n in str(value["shape"]).split(",")])
+            return _widget_safe(arr.copy())
         return {k: _widget_safe(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return type(value)(_widget_safe(v) for v in value)
     return value
+
+
+def _merge(old: dict, part: dict) -> dict:
+    """The figure ``old`` (plotly JSON) with a partial update applied (see :class:`PanelView`)."""
+    data = [dict(t) for t in old["data"]]
+    for i, d in enumerate(part.get("data") or ()):
+        if d:
+            data[i].update(_widget_safe(d))
+    layout = dict(old["layout"])
+    layout.update(_widget_safe(part.get("layout") or {}))
+    if "title" in part:
+        layout["title"] = dict(layout.get("title") or {}, text=part["title"])
+    return {"data": data, "layout": layout}
 
 
 def _structure(state: dict) -> list:
@@ -242,7 +269,8 @@ class LivePanel:
             raise RuntimeError(f"the panel drew {len(view.figures)} figures, it shows {len(self.figures)}")
         t0 = time.perf_counter()
         for k, (fw, fig) in enumerate(zip(self.figures, view.figures)):
-            self._sync(k, fw, _widget_safe(fig.to_plotly_json()))
+            new = _merge(self._states[k], fig) if isinstance(fig, dict) else _widget_safe(fig.to_plotly_json())
+            self._sync(k, fw, new)
         self.timings["send"] = time.perf_counter() - t0
         self.last_error = None
         self._stale = False

@@ -63,23 +63,29 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
             r = clik(traj, m, K, p=p, damping=damping)
         return dict(method=m, relaxed=relaxed, result=r, summary=r.summary())
 
+    drawn = {}  # the method the figure shows: another run of the same method only needs new data and title
+
     def draw(st):
         m, r, s = st["method"], st["result"], st["summary"]
-        fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
-        colour = PALETTE.get(m, "#000000")
-        for row, series in ((1, r.position_error), (2, r.orientation_error)):
-            tt, yy = envelope(r.t, series, points)
-            fig.add_trace(dict(type="scatter", x=tt, y=yy, mode="lines", name=_label(r), showlegend=row == 1,
-                               line=dict(color=colour, width=1.5)), row=row, col=1)
+        series = [envelope(r.t, r.position_error, points), envelope(r.t, r.orientation_error, points)]
         idx = thin(len(r.t), points)
-        fig.add_trace(dict(type="scatter", x=r.t[idx], y=r.w[idx], mode="lines", name="w", showlegend=False,
-                           line=dict(color=colour, width=1.5)), row=3, col=1)
-        finish_layout(fig, f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = "
-                           f"{s['max_position_error'] * 1e3:.4g} mm", 620)
-        fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
-        fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
-        fig.update_yaxes(title_text="w (m²)", row=3, col=1)
-        fig.update_xaxes(title_text="t (s)", row=3, col=1)
+        series.append((r.t[idx], r.w[idx]))
+        title = f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = {s['max_position_error'] * 1e3:.4g} mm"
+        if drawn.get("method") == m:
+            fig = dict(data=[dict(x=x, y=y, **({"name": _label(r)} if k < 2 else {}))
+                             for k, (x, y) in enumerate(series)], title=title)
+        else:
+            fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
+            colour = PALETTE.get(m, "#000000")
+            for k, (x, y) in enumerate(series):
+                fig.add_trace(dict(type="scatter", x=x, y=y, mode="lines", name=_label(r) if k < 2 else "w",
+                                   showlegend=k == 0, line=dict(color=colour, width=1.5)), row=k + 1, col=1)
+            finish_layout(fig, title, 620)
+            fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
+            fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
+            fig.update_yaxes(title_text="w (m²)", row=3, col=1)
+            fig.update_xaxes(title_text="t (s)", row=3, col=1)
+            drawn["method"] = m
         rows = [("max / RMS position error (mm)",
                  f"{s['max_position_error'] * 1e3:.4g} / {s['rms_position_error'] * 1e3:.4g}"),
                 ("max orientation error (mrad)", f"{s['max_orientation_error'] * 1e3:.4g}"),

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..control import AdaptiveController, OperationalSpaceController, RobustController, control_summary
 from ..kinematics import _params
-from ..plots.control import tuning_figure
+from ..plots.control import tuning_figure, tuning_series, tuning_title
 from ._common import LivePanel, PanelView, readable, start_value
 
 __all__ = ["control_panel"]
@@ -88,6 +88,8 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 1200) -
         res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
         return dict(controller=c, plant=plant, payload=payload, result=res, summary=control_summary(res))
 
+    drawn = {}  # the controller the figure shows: a run of the same one only needs new data and title
+
     def draw(st):
         c, res, s, payload = st["controller"], st["result"], st["summary"], st["payload"]
         extra = f"70 s simulated in {1e3 * res.elapsed:.0f} ms (compiled loop)"
@@ -102,7 +104,13 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 1200) -
         if s["final_error"] > 1e-3:
             notes.append(f"At rest the tool stays {1e3 * s['final_error']:.3g} mm from its target: "
                          "the payload's weight is not fully compensated.")
-        return PanelView([tuning_figure(res, s, extra, points=points)], "", notes)
+        if drawn.get("controller") == c.name:
+            fig = dict(data=[dict(x=x, y=y) for x, y in tuning_series(res, points)],
+                       title=tuning_title(res, s, extra))
+        else:
+            fig = tuning_figure(res, s, extra, points=points)
+            drawn["controller"] = c.name
+        return PanelView([fig], "", notes)
 
     def explain(exc, values):
         # the panel gives every joint or component the same gain: name the gain, not its first entry

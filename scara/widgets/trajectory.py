@@ -11,7 +11,8 @@ import ipywidgets as ipw
 import plotly.graph_objects as go
 
 from ..errors import ScaraError
-from ..plots.trajectory import profiles_figure, top_view_figure
+from ..plots.kinematics import top_view_arm
+from ..plots.trajectory import profiles_figure, profiles_series, segment_shapes, top_view_figure, top_view_series
 from ..trajectory import Waypoint, plan_path, reference_plan
 from ._common import LivePanel, PanelView, table
 
@@ -41,6 +42,7 @@ class WaypointEditor:
         self.trajectory = plan_path(**plan)  # an invalid plan raises here, with the planner's message
         self.plan = plan
         self.profiles = profiles
+        self._drawn = False  # after the first draw, only the figures' data, title and shapes are rebuilt
         wps = plan["waypoints"]
         labels = [w.label for w in wps]
         segs = [f"{labels[j]}->{labels[j + 1]}" for j in range(len(wps) - 1)]
@@ -100,16 +102,26 @@ class WaypointEditor:
     def _draw(self, s):
         traj, k = s["traj"], s["point"]
         label = traj.labels[k]
-        top = top_view_figure(traj, points=1200, title=f"The edited path seen from above (editing {label})",
-                              height=460)
+        title = f"The edited path seen from above (editing {label})"
         pos = traj.waypoints[k]
-        top.add_trace(go.Scatter(x=[float(pos[0])], y=[float(pos[1])], mode="markers", name=f"editing {label}",
-                                 marker=dict(size=18, symbol="circle-open", color=_SELECTED, line=dict(width=3)),
-                                 hoverinfo="skip"))
-        figs = [top]
-        if self.profiles:
-            figs.append(profiles_figure(traj, points=1000, height=620,
-                                        title="Its position, velocity and acceleration (orange: via overlaps)"))
+        marker = dict(x=[float(pos[0])], y=[float(pos[1])], name=f"editing {label}")
+        if self._drawn:  # the same figures with new data: no layout to rebuild
+            top = top_view_series(traj, points=1200)
+            arm = top_view_arm(traj.q0, traj.params)
+            data = [dict(x=arm.x, y=arm.y), dict(x=top["path"][0], y=top["path"][1]), top["stop"], top["via"], marker]
+            figs = [dict(data=data, title=title)]
+            if self.profiles:
+                figs.append(dict(data=[dict(x=x, y=y) for x, y in profiles_series(traj, points=1000)],
+                                 layout=dict(shapes=segment_shapes(traj))))
+        else:
+            top = top_view_figure(traj, points=1200, title=title, height=460)
+            top.add_trace(go.Scatter(mode="markers", marker=dict(size=18, symbol="circle-open", color=_SELECTED,
+                                                                 line=dict(width=3)), hoverinfo="skip", **marker))
+            figs = [top]
+            if self.profiles:
+                figs.append(profiles_figure(traj, points=1000, height=620,
+                                            title="Its position, velocity and acceleration (orange: via overlaps)"))
+            self._drawn = True
         summ = s["summary"]
         corner = ", ".join(f"{name}: {1000 * v:.1f} mm" for name, v in summ["corner_distances"].items()) or "none"
         rows = [("motion ends at (s)", f"{summ['motion_end']:.1f}"),
