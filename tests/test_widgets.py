@@ -214,12 +214,23 @@ def test_fast_redraws_equal_full_figures():
     full = tuning_figure(st["result"], st["summary"], "x")
     _same_data(c._states[0], full.to_plotly_json())
     assert c.figures[0].layout.title.text.split("<br>")[0] == full.layout.title.text.split("<br>")[0]
+    for name in ("adaptive (Slotine-Li)", "operational ID, no integral", "robust"):  # another law, same figure
+        c.controls["controller"].value = name
+        st = c.state
+        full = tuning_figure(st["result"], st["summary"], "x").to_plotly_json()
+        _same_data(c._states[0], full)
+        for t, f in zip(c._states[0]["data"], full["data"]):
+            assert t["line"]["color"] == f["line"]["color"]
+        assert c._states[0]["layout"]["yaxis4"].get("type", "linear") == full["layout"]["yaxis4"].get("type", "linear")
+        assert c._states[0]["layout"]["yaxis4"]["title"] == full["layout"]["yaxis4"]["title"]
 
     ed = waypoint_editor()
     ed.panel.controls["x"].value = 0.08
     traj2 = ed.trajectory
-    _same_data(ed.panel._states[0], top_view_figure(traj2, points=1200).to_plotly_json())
-    _same_data(ed.panel._states[1], profiles_figure(traj2, points=1000).to_plotly_json())
+    from scara.widgets.trajectory import PROFILE_POINTS, TOP_POINTS
+
+    _same_data(ed.panel._states[0], top_view_figure(traj2, points=TOP_POINTS).to_plotly_json())
+    _same_data(ed.panel._states[1], profiles_figure(traj2, points=PROFILE_POINTS).to_plotly_json())
     assert ed.panel._states[1]["layout"]["shapes"] == profiles_figure(traj2).to_plotly_json()["layout"]["shapes"]
 
     k = clik_panel(traj)
@@ -230,3 +241,6 @@ def test_fast_redraws_equal_full_figures():
     r = k.state["result"]
     assert not _same(first, k._states[0]["data"][0]["y"])
     assert _same(k._states[0]["data"][0]["y"], envelope(r.t, r.position_error, 1500)[1].astype(float))
+    k.controls["method"].value = "Jacobian transpose"
+    assert k._states[0]["data"][0]["name"] == "Jacobian transpose"
+    assert k._states[0]["data"][0]["line"]["color"] == k._states[0]["data"][2]["line"]["color"] != "#0072B2"

@@ -25,7 +25,7 @@ __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
     "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "tuning_figure", "tuning_series",
-    "tuning_title",
+    "tuning_signal", "tuning_title",
 ]
 
 #: legend names of the controllers (keys: the controllers' ``name``, also the keys of ``PALETTE``)
@@ -352,6 +352,16 @@ def tuning_series(result, points: int = 1200) -> list:
     return [(_f(x), _f(y)) for x, y in out]
 
 
+def tuning_signal(result) -> tuple:
+    """The third panel of :func:`tuning_figure`: ``(name, colour, log axis)`` of the run's own signal."""
+    sig = result.signals
+    if "payload_estimate" in sig:
+        return "m̂_L (kg)", PALETTE["adaptive"], False
+    if "z_norm" in sig:
+        return "‖z‖", PALETTE["robust"], True
+    return "e_z (mm)", AXIS_COLOURS[2], False
+
+
 def tuning_title(result, summary: dict, extra: str = "") -> str:
     """The title of :func:`tuning_figure`: the run's figures (error after 1 s and at rest, peak quill force,
     chattering) and ``extra``."""
@@ -372,17 +382,11 @@ def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, he
     fig.add_trace(_line(*series[1], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
     for (x, y), j in zip(series[2:5], (0, 1, 3)):
         fig.add_trace(_line(x, y, f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1), row=2, col=1, secondary_y=True)
-    sig = result.signals
-    if "payload_estimate" in sig:
-        fig.add_trace(_line(*series[5], "m̂_L (kg)", PALETTE["adaptive"]), row=3, col=1)
-        lab = "m̂_L (kg)"
-    elif "z_norm" in sig:
-        fig.add_trace(_line(*series[5], "‖z‖", PALETTE["robust"]), row=3, col=1)
+    name, colour, log = tuning_signal(result)
+    fig.add_trace(_line(*series[5], name, colour), row=3, col=1)
+    if log:
         fig.update_yaxes(type="log", exponentformat="power", row=3, col=1)
-        lab = "‖z‖"
-    else:
-        fig.add_trace(_line(*series[5], "e_z (mm)", AXIS_COLOURS[2]), row=3, col=1)
-        lab = "e_z (mm)"
+    lab = name
     finish_layout(fig, tuning_title(result, summary, extra), height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
     fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)

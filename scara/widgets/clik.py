@@ -63,7 +63,7 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
             r = clik(traj, m, K, p=p, damping=damping)
         return dict(method=m, relaxed=relaxed, result=r, summary=r.summary())
 
-    drawn = {}  # the method the figure shows: another run of the same method only needs new data and title
+    drawn = {}  # set once the figure is built: later runs only need new data, names, colours and title
 
     def draw(st):
         m, r, s = st["method"], st["result"], st["summary"]
@@ -71,12 +71,12 @@ def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
         idx = thin(len(r.t), points)
         series.append((r.t[idx], r.w[idx]))
         title = f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = {s['max_position_error'] * 1e3:.4g} mm"
-        if drawn.get("method") == m:
-            fig = dict(data=[dict(x=x, y=y, **({"name": _label(r)} if k < 2 else {}))
+        colour = PALETTE.get(m, "#000000")
+        if drawn:  # the figure's layout is built: send data, names, colours and the title
+            fig = dict(data=[dict(x=x, y=y, name=_label(r) if k < 2 else "w", line=dict(color=colour, width=1.5))
                              for k, (x, y) in enumerate(series)], title=title)
         else:
             fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
-            colour = PALETTE.get(m, "#000000")
             for k, (x, y) in enumerate(series):
                 fig.add_trace(dict(type="scatter", x=x, y=y, mode="lines", name=_label(r) if k < 2 else "w",
                                    showlegend=k == 0, line=dict(color=colour, width=1.5)), row=k + 1, col=1)

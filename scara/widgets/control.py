@@ -10,7 +10,7 @@ import numpy as np
 
 from ..control import AdaptiveController, OperationalSpaceController, RobustController, control_summary
 from ..kinematics import _params
-from ..plots.control import tuning_figure, tuning_series, tuning_title
+from ..plots.control import _colour, _label, tuning_figure, tuning_series, tuning_signal, tuning_title
 from ._common import LivePanel, PanelView, readable, start_value
 
 __all__ = ["control_panel"]
@@ -88,7 +88,7 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 1200) -
         res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
         return dict(controller=c, plant=plant, payload=payload, result=res, summary=control_summary(res))
 
-    drawn = {}  # the controller the figure shows: a run of the same one only needs new data and title
+    drawn = {}  # the first figure's signal axis: later runs only need new data, names, colours and title
 
     def draw(st):
         c, res, s, payload = st["controller"], st["result"], st["summary"], st["payload"]
@@ -104,12 +104,17 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 1200) -
         if s["final_error"] > 1e-3:
             notes.append(f"At rest the tool stays {1e3 * s['final_error']:.3g} mm from its target: "
                          "the payload's weight is not fully compensated.")
-        if drawn.get("controller") == c.name:
-            fig = dict(data=[dict(x=x, y=y) for x, y in tuning_series(res, points)],
-                       title=tuning_title(res, s, extra))
+        if drawn:  # the figure's layout is built: send data, names, colours, the signal's axis and the title
+            data = [dict(x=x, y=y) for x, y in tuning_series(res, points)]
+            name, colour, log = tuning_signal(res)
+            data[0].update(name=_label(res), line=dict(color=_colour(res), width=1.8))
+            data[5].update(name=name, line=dict(color=colour, width=1.5))
+            axis = dict(drawn["signal_axis"], type="log" if log else "linear", title=dict(text=name))
+            fig = dict(data=data, title=tuning_title(res, s, extra), layout={drawn["signal_axis_key"]: axis})
         else:
             fig = tuning_figure(res, s, extra, points=points)
-            drawn["controller"] = c.name
+            key = fig.data[5].yaxis.replace("y", "yaxis")
+            drawn.update(signal_axis_key=key, signal_axis=fig.layout[key].to_plotly_json())
         return PanelView([fig], "", notes)
 
     def explain(exc, values):

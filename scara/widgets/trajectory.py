@@ -20,6 +20,8 @@ __all__ = ["WaypointEditor", "waypoint_editor"]
 
 _STYLE = {"description_width": "initial"}
 _SELECTED = "#D55E00"
+#: samples drawn per curve: enough for the eye, few enough for the browser to redraw at once
+TOP_POINTS, PROFILE_POINTS = 600, 500
 
 
 class WaypointEditor:
@@ -106,20 +108,20 @@ class WaypointEditor:
         pos = traj.waypoints[k]
         marker = dict(x=[float(pos[0])], y=[float(pos[1])], name=f"editing {label}")
         if self._drawn:  # the same figures with new data: no layout to rebuild
-            top = top_view_series(traj, points=1200)
+            top = top_view_series(traj, points=TOP_POINTS)
             arm = top_view_arm(traj.q0, traj.params)
             data = [dict(x=arm.x, y=arm.y), dict(x=top["path"][0], y=top["path"][1]), top["stop"], top["via"], marker]
             figs = [dict(data=data, title=title)]
             if self.profiles:
-                figs.append(dict(data=[dict(x=x, y=y) for x, y in profiles_series(traj, points=1000)],
+                figs.append(dict(data=[dict(x=x, y=y) for x, y in profiles_series(traj, points=PROFILE_POINTS)],
                                  layout=dict(shapes=segment_shapes(traj))))
         else:
-            top = top_view_figure(traj, points=1200, title=title, height=460)
+            top = top_view_figure(traj, points=TOP_POINTS, title=title, height=460)
             top.add_trace(go.Scatter(mode="markers", marker=dict(size=18, symbol="circle-open", color=_SELECTED,
                                                                  line=dict(width=3)), hoverinfo="skip", **marker))
             figs = [top]
             if self.profiles:
-                figs.append(profiles_figure(traj, points=1000, height=620,
+                figs.append(profiles_figure(traj, points=PROFILE_POINTS, height=620,
                                             title="Its position, velocity and acceleration (orange: via overlaps)"))
             self._drawn = True
         summ = s["summary"]
