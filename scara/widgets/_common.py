@@ -292,7 +292,7 @@ class LivePanel:
     def _sync(self, k: int, fw, new: dict) -> None:
         """Send the differences between the figure shown and ``new`` (a plotly JSON dict) in one update."""
         old = self._states[k]
-        if "template" in old["layout"] and "template" not in new["layout"]:
+        if "template" in old["layout"]:
             new["layout"]["template"] = old["layout"]["template"]  # sent once, with the first figure
         layout = _delta(old["layout"], new["layout"])
         if self._stale:
