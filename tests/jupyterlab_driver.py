@@ -249,6 +249,7 @@ class Lab:
             elapsed = time.monotonic() - t0
             self.page.wait_for_timeout(700)  # still done a moment later: not between two cells
             if self.page.evaluate(done):
+                self.page.wait_for_timeout(1500)  # let the page finish typesetting and drawing the outputs
                 return elapsed
 
     def cell_errors(self) -> list[str]:
