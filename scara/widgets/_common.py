@@ -119,19 +119,24 @@ def _delta(old: dict, new: dict, keep=()) -> dict:
 
 
 def _widget_safe(value):
-    """``value`` with every float array other than float64 made float64, and plotly's base64 arrays
-    (``{"dtype", "bdata"}``, which ``to_plotly_json`` may return) decoded, so that figures compare by value.
-    plotly's FigureWidget (7.1) reads a float32 array echoed back by the browser as a dict and fails on it
-    (``ValueError: The truth value of an array ... is ambiguous`` in ``_remove_overlapping_props``, sent to the
-    Log Console on every update)."""
+    """``value`` with every numpy array made a plain list (NaN as ``None``, a gap in a line), and plotly's
+    base64 arrays (``{"dtype", "bdata"}``, which ``to_plotly_json`` may return) decoded first.
+
+    plotly's FigureWidget (7.1) keeps a numpy array as it is but stores the browser's echo of it (a typed
+    array) as a dict, and then fails comparing the two (``ValueError: The truth value of an array ... is
+    ambiguous`` in ``_remove_overlapping_props``, written to the Log Console on every update). Plain lists
+    travel as plain arrays and come back as lists.
+    """
     if isinstance(value, np.ndarray):
-        return value.astype(np.float64) if value.dtype.kind == "f" and value.dtype != np.float64 else value
+        if value.dtype.kind == "f":
+            return [None if v != v else v for v in value.astype(np.float64).tolist()]
+        return value.tolist()
     if isinstance(value, dict):
         if "bdata" in value and "dtype" in value:
             arr = np.frombuffer(base64.b64decode(value["bdata"]), dtype=np.dtype(value["dtype"]))
             if value.get("shape"):
                 arr = arr.reshape([int(n) for n in str(value["shape"]).split(",")])
-            return _widget_safe(arr.copy())
+            return _widget_safe(arr)
         return {k: _widget_safe(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return type(value)(_widget_safe(v) for v in value)
