@@ -211,13 +211,13 @@ def test_fast_redraws_equal_full_figures():
     c = control_panel(traj)
     c.controls["K_P"].value = 1500.0
     st = c.state
-    full = tuning_figure(st["result"], st["summary"], "x")
+    full = tuning_figure(st["result"], st["summary"], "x", points=600)
     _same_data(c._states[0], full.to_plotly_json())
     assert c.figures[0].layout.title.text.split("<br>")[0] == full.layout.title.text.split("<br>")[0]
     for name in ("adaptive (Slotine-Li)", "operational ID, no integral", "robust"):  # another law, same figure
         c.controls["controller"].value = name
         st = c.state
-        full = tuning_figure(st["result"], st["summary"], "x").to_plotly_json()
+        full = tuning_figure(st["result"], st["summary"], "x", points=600).to_plotly_json()
         _same_data(c._states[0], full)
         for t, f in zip(c._states[0]["data"], full["data"]):
             assert t["line"]["color"] == f["line"]["color"]
@@ -240,7 +240,7 @@ def test_fast_redraws_equal_full_figures():
 
     r = k.state["result"]
     assert not _same(first, k._states[0]["data"][0]["y"])
-    assert _same(k._states[0]["data"][0]["y"], envelope(r.t, r.position_error, 1500)[1].astype(float))
+    assert _same(k._states[0]["data"][0]["y"], envelope(r.t, r.position_error, 800)[1].astype(float))
     k.controls["method"].value = "Jacobian transpose"
     assert k._states[0]["data"][0]["name"] == "Jacobian transpose"
     assert k._states[0]["data"][0]["line"]["color"] == k._states[0]["data"][2]["line"]["color"] != "#0072B2"

@@ -23,7 +23,7 @@ _METHODS = {"Jacobian inverse": "inverse", "Jacobian transpose": "transpose",
             "pseudo-inverse + null space": "pseudoinverse", "second order": "second_order"}
 
 
-def clik_panel(traj=None, p=None, points: int = 1500) -> LivePanel:
+def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
     ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain
     ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara.clik.clik` (or

@@ -41,7 +41,7 @@ def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, 
     return OperationalSpaceController(integral=controller == "operational ID + integral", K_P=K_P, K_D=K_D, K_I=K_I)
 
 
-def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 1200) -> LivePanel:
+def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) -> LivePanel:
     """Controller dropdown and sliders: ``K_P`` (1/s^2) and ``K_D`` (1/s) of the robust and operational laws,
     ``Lambda`` (1/s) of the robust and adaptive laws, ``rho`` (m/s^2) and ``epsilon`` of the robust term, a scale of
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
