@@ -19,13 +19,12 @@ from pathlib import Path
 
 import pytest
 
+from jupyterlab_driver import ARGS, CHROMIUM  # one place for the browser's path and flags
+
 ROOT = Path(__file__).resolve().parents[1]
 HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))  # another build can be tested
 SHOTS = HTML.parent / "screenshots"
-CHROMIUM = os.environ.get("SCARA_CHROMIUM", "/usr/bin/chromium")
 IN_CI = os.environ.get("CI", "").lower() == "true"
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-        "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic"]
 
 
 def _unavailable(reason: str):

@@ -45,26 +45,28 @@ def _unavailable(reason: str):
     pytest.skip(reason)
 
 
+def _require(module: str, found: bool, reason: str):
+    """Skip (fail under CI) unless ``found`` and ``module`` imports."""
+    try:
+        __import__(module)
+    except ImportError:
+        found = False
+    if not found:
+        _unavailable(reason)
+
+
 @pytest.fixture(scope="module")
 def lab_url():
-    if lab_driver.jupyter_executable() is None:
-        _unavailable("JupyterLab is not installed (pip install -r requirements.txt)")
-    try:
-        import jupyterlab  # noqa: F401
-    except ImportError:
-        _unavailable("JupyterLab is not installed (pip install -r requirements.txt)")
+    _require("jupyterlab", lab_driver.jupyter_executable() is not None,
+             "JupyterLab is not installed (pip install -r requirements.txt)")
     with lab_driver.jupyterlab_server() as url:
         yield url
 
 
 @pytest.fixture(scope="module")
 def browser():
-    if not lab_driver.chromium_available():
-        _unavailable(f"Chromium not found at {lab_driver.CHROMIUM} (apt-get install chromium)")
-    try:
-        import playwright  # noqa: F401
-    except ImportError:
-        _unavailable("playwright (Python) is not installed")
+    _require("playwright", lab_driver.chromium_available(),
+             f"Chromium (at {lab_driver.CHROMIUM}) or playwright is missing (apt-get install chromium)")
     with lab_driver.chromium() as b:
         yield b
 

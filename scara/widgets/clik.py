@@ -27,7 +27,7 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
     ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain
     ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara.clik.clik` (or
-    ``clik2``) on ``traj`` (default: the reference of SPEC section 4) and redraws the position error (log),
+    ``clik2``) on ``traj`` (default: the 70 s reference of chapter 3) and redraws the position error (log),
     the orientation error and the manipulability, with the summary figures and the run time listed. Settings
     the package refuses (a gain past a stability limit, a run that diverges) are reported in the panel."""
     p = _params(p)

@@ -46,7 +46,7 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     ``Lambda`` (1/s) of the robust and adaptive laws, ``rho`` (m/s^2) and ``epsilon`` of the robust term, a scale of
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
     lumped mass ``m3``, ``K_I`` (1/s^3), and the true payload (kg) of the plant (the controllers never know it).
-    Each change re-runs the 70 s reference (``traj``, default SPEC section 4; the joint reference of
+    Each change re-runs the 70 s reference (``traj``, default the reference of chapter 3; the joint reference of
     ``clik2`` is computed once) and redraws the error, the torques and the controller's own signal. Settings the
     package refuses (non-positive gains, ``Lambda >= K_D``, an unstable integral, a run that diverges or breaks a
     bound) are reported in the panel with the time and cause."""
