@@ -172,6 +172,11 @@ class Lab:
         self.console_errors: list[str] = []
         self.page_errors: list[str] = []
         self.context.route("**/*", self._route)
+        # the end of the page's last long task (a main-thread task over 50 ms): see :meth:`settle`
+        self.context.add_init_script("""window.__scaraLastLong = 0;
+          try { new PerformanceObserver((list) => { for (const e of list.getEntries())
+                  window.__scaraLastLong = Math.max(window.__scaraLastLong, e.startTime + e.duration); })
+                .observe({type: 'longtask', buffered: true}); } catch (err) {}""")
         self.page.on("console", self._console)
         self.page.on("pageerror", lambda exc: self.page_errors.append(str(exc)))
 
@@ -249,8 +254,21 @@ class Lab:
             elapsed = time.monotonic() - t0
             self.page.wait_for_timeout(700)  # still done a moment later: not between two cells
             if self.page.evaluate(done):
-                self.page.wait_for_timeout(1500)  # let the page finish typesetting and drawing the outputs
+                self.settle()  # let the page finish typesetting and drawing the outputs
                 return elapsed
+
+    def settle(self, quiet: float = 2.0, timeout: float = 30.0) -> float:
+        """Wait until the page has run no long task for ``quiet`` s (at most ``timeout`` s), as a reader who
+        has just run a chapter scrolls to its panel; returns the seconds waited."""
+        return self.page.evaluate("""([quiet, timeout]) => new Promise((resolve) => {
+          const t0 = performance.now();
+          const tick = () => {
+            const now = performance.now();
+            if (now - Math.max(t0, window.__scaraLastLong || 0) >= quiet || now - t0 >= timeout) resolve((now - t0) / 1000);
+            else setTimeout(tick, 100);
+          };
+          tick();
+        })""", [quiet * 1000, timeout * 1000])
 
     def cell_errors(self) -> list[str]:
         return self.page.evaluate("""() => Array.from(document.querySelectorAll(
@@ -345,22 +363,29 @@ class Lab:
         ``before``'s) and its figures have stopped redrawing for ``settle_ms``; return the time from the first
         key press or change after ``mark`` to the last redraw (ms, None if nothing was redrawn) and the
         redraw count."""
-        a0, k0 = mark
-        deadline = time.monotonic() + timeout
-        while self.state(panel).get("seq") == before.get("seq"):
-            if time.monotonic() > deadline:
-                raise TimeoutError(f"the panel did not take the change within {timeout:.0f} s (values {before})")
-            self.page.wait_for_timeout(20)
-        last_n, last_change = -1, time.monotonic()
-        while time.monotonic() < deadline:
-            n = self.page.evaluate("() => window.__scara.after.length")
-            if n != last_n:
-                last_n, last_change = n, time.monotonic()
-            elif (time.monotonic() - last_change) * 1000 >= settle_ms:
-                break
-            self.page.wait_for_timeout(20)
-        data = self.page.evaluate("([a0, k0]) => ({after: window.__scara.after.slice(a0), keys: window.__scara.keys.slice(k0)})",
-                                  [a0, k0])
+        # one awaited promise in the page, not a poll from here: every call from the test into the page
+        # costs the browser's main thread and a core of this 2-core machine, and would slow what it measures
+        data = panel.evaluate("""(panel, [a0, k0, seq0, settle, timeout]) => new Promise((resolve) => {
+          const t0 = performance.now();
+          const seq = () => { const e = panel.querySelector('.scara-panel-values');
+                              try { return e ? JSON.parse(e.textContent).seq : null; } catch (err) { return null; } };
+          let taken = false, lastN = -1, lastChange = 0;
+          const done = (ok) => resolve({ok, after: window.__scara.after.slice(a0), keys: window.__scara.keys.slice(k0)});
+          const tick = () => {
+            const now = performance.now();
+            if (now - t0 > timeout) return done(taken);
+            if (!taken) { taken = seq() !== seq0; lastChange = now; }
+            if (taken) {
+              const n = window.__scara.after.length;
+              if (n !== lastN) { lastN = n; lastChange = now; }
+              else if (now - lastChange >= settle) return done(true);
+            }
+            setTimeout(tick, 25);
+          };
+          setTimeout(tick, 25);
+        })""", [mark[0], mark[1], before.get("seq"), settle_ms, timeout * 1000])
+        if not data["ok"]:
+            raise TimeoutError(f"the panel did not take the change within {timeout:.0f} s (values {before})")
         if not data["after"] or not data["keys"]:
             return {"latency_ms": None, "redraws": len(data["after"])}
         t_key = data["keys"][0]

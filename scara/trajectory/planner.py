@@ -215,11 +215,9 @@ class Trajectory:
 
         The minimum of ``|p_e(t) - p_via|`` over the overlap of the two segments (outside it the arm is on
         one of the straight lines, farther away), found on the samples and refined between the neighbouring
-        samples with :meth:`evaluate`. Zero for a via point lying on a straight continuation (only the speed
-        blends there).
+        samples with :meth:`evaluate` (four passes of 65 samples each, which fix the time to about 1e-9 s).
+        Zero for a via point lying on a straight continuation (only the speed blends there).
         """
-        from scipy.optimize import minimize_scalar
-
         out = {}
         for i in np.flatnonzero(self.via):
             pv = self.waypoints[i]
@@ -232,9 +230,16 @@ class Trajectory:
             d = np.linalg.norm(self.x[k0:k1 + 1, :3] - pv, axis=1)
             k = k0 + int(np.argmin(d))
             lo, hi = max(a, self.t[k] - self.dt), min(b, self.t[k] + self.dt)
-            f = lambda s: float(np.linalg.norm(self.evaluate([s])[0][0, :3] - pv))  # noqa: E731
-            res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options=dict(xatol=1e-10))
-            best = (res.fun, res.x) if res.fun < d[k - k0] else (d[k - k0], self.t[k])
+            fun, arg = float(d[k - k0]), float(self.t[k])
+            for _ in range(4):  # each pass narrows the bracket around the best of 65 exact samples 32-fold
+                s = np.linspace(lo, hi, 65)
+                dd = np.linalg.norm(self.evaluate(s)[0][:, :3] - pv, axis=1)
+                j = int(np.argmin(dd))
+                if dd[j] < fun:
+                    fun, arg = float(dd[j]), float(s[j])
+                step = (hi - lo) / 64
+                lo, hi = max(lo, s[j] - step), min(hi, s[j] + step)
+            best = (fun, arg)
             if straight:  # a straight continuation runs through the via point: the distance is exactly 0
                 best = (0.0, best[1])
             out[self.labels[i]] = (float(best[0]), float(best[1]))

@@ -9,9 +9,10 @@ A panel is built from two functions of the control values:
 
 The figures are shown as plotly ``FigureWidget`` objects created once, when the panel is built. On every change
 the new figures are compared with the previous ones and only what differs (a trace's ``x``/``y``/``z``, a
-title, an axis, the annotations) is sent to the browser, in one ``batch_update`` per figure, so that one move
-redraws each figure once and nothing is ever displayed outside the panel. A refused setting shows its message
-and marks every figure *stale* (its traces hidden, its title saying why) until a valid setting is made again.
+title, an axis, the annotations) is sent to the browser in one update message per figure (the message
+``batch_update`` sends, built directly), so that one move redraws each figure once and nothing is ever
+displayed outside the panel. A refused setting shows its message and marks every figure *stale* (its traces
+hidden, its title saying why) until a valid setting is made again.
 """
 from __future__ import annotations
 
@@ -27,6 +28,7 @@ from dataclasses import dataclass, field
 import ipywidgets as ipw
 import numpy as np
 import plotly.graph_objects as go
+from plotly.basedatatypes import Undefined
 from IPython.display import display
 
 from ..errors import ScaraError
@@ -104,7 +106,14 @@ def _same(a, b) -> bool:
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
     if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+        if len(a) != len(b):
+            return False
+        try:  # lists of numbers or strings: one comparison in C (NaN never appears: gaps are None)
+            if (a == b) is True:
+                return True
+        except (TypeError, ValueError):  # numpy arrays inside: element by element
+            pass
+        return all(_same(x, y) for x, y in zip(a, b))
     if type(a) is not type(b) and not (isinstance(a, (int, float)) and isinstance(b, (int, float))):
         return False
     return a == b or (a != a and b != b)  # NaN equals NaN here
@@ -314,12 +323,12 @@ class LivePanel:
                 for d, b in zip(deltas, new["data"]):
                     d["visible"] = b.get("visible", True)
         if layout or any(deltas):
-            with fw.batch_update():
-                for trace, delta in zip(fw.data, deltas):
-                    if delta:
-                        trace.update(delta, overwrite=True)
-                for key, value in layout.items():
-                    fw.layout[key] = value
+            # the message ``batch_update`` builds (one Plotly.update in the browser), without re-validating
+            # data that came from validated figures: plotly's validators walk every element of every list
+            changed = [i for i, d in enumerate(deltas) if d]
+            props = sorted({key for i in changed for key in deltas[i]})
+            restyle = {key: [deltas[i].get(key, Undefined) for i in changed] for key in props}
+            fw.plotly_update(restyle_data=restyle, relayout_data=layout, trace_indexes=changed)
             self.redraws += 1
         self._states[k] = new
 
