@@ -8,14 +8,16 @@ reports the largest absolute difference. Three groups:
    ``LOCAL_WORLD_ALIGNED``: linear velocity of the end-effector origin and angular velocity, both in the base
    frame). Sign conventions: the three position rows of ``J_A`` are the libraries' linear rows; the libraries'
    angular rate about the base z axis (up) is ``-phi_dot``, since ``phi`` turns about the downward ``z0``
-   (SPEC section 2), so ``J_A[3] = -J_geo[5]``; the horizontal angular rows ``J_geo[3:5]`` are zero.
+   (chapter 1, (eq-kin-base) and (eq-fk)), so ``J_A[3] = -J_geo[5]``; the horizontal angular rows
+   ``J_geo[3:5]`` are zero.
 2. Rigid-body dynamics with the rotor inertias set to zero: ``B``, ``C`` (Christoffel; the toolbox's
    ``coriolis`` and Pinocchio's ``computeCoriolisMatrix``), ``g``, inverse dynamics ``tau`` (with the
    friction ``F qd``) and forward dynamics ``qdd``.
 3. Rotors on: the libraries add only ``diag(k_r^2 I_m)``. The remainder ``B_ours - B_lib`` must equal
    :func:`rotor_coupling` (constant, since every rotor turns about the vertical with a link whose angular
    velocity is a sum of joint rates), so ``tau_ours - tau_lib = Delta_B qdd`` with no velocity or gravity
-   part; and :func:`rotor_effect` measures that term along the reference motion of SPEC section 4.
+   part; and :func:`rotor_effect` measures that term along the reference motion of chapter 3 (section The
+   reference path).
 
 Run ``python benchmarks/agreement.py`` for the table. Needs the extras of ``requirements-bench.txt``.
 """
@@ -171,7 +173,7 @@ def kinematics_agreement(n: int = 500, seed: int = 7, p: ScaraParams | None = No
 # ------------------------------------------------------------------------------------------------------
 def dynamics_agreement(n: int = 300, seed: int = 11, p: ScaraParams | None = None) -> dict:
     """Largest differences of ``B, C, g, tau, qdd`` over ``n`` random states with ``I_m = 0``, per library
-    (and for the plain-numpy twin of ``libraries.NumpyRobot``, which keeps the SPEC formulas)."""
+    (and for the plain-numpy twin of ``libraries.NumpyRobot``, which keeps the closed forms of chapters 1 and 5)."""
     p = (ScaraParams() if p is None else p).replace(I_m=NO_ROTORS)
     q, qd, qdd = random_states(n, seed, p)
     libs = {name: library(name, p, rotors=False) for name in LIBRARIES}
@@ -198,7 +200,8 @@ def dynamics_agreement(n: int = 300, seed: int = 11, p: ScaraParams | None = Non
 # 3. rotors on
 # ------------------------------------------------------------------------------------------------------
 def rotor_coupling(p: ScaraParams | None = None) -> np.ndarray:
-    """``Delta_B``: the part of SPEC section 3's ``B`` that a diagonal ``k_r^2 I_m`` leaves out, shape (4, 4).
+    """``Delta_B`` (eq-verif-rotor-coupling): the part of the ``B`` of chapter 5 ((eq-dynamics) with the rotors of
+    (eq-dyn-rotors)) that a diagonal ``k_r^2 I_m`` leaves out, shape (4, 4).
 
     Rotor i turns at ``omega_{i-1} + k_ri qd_i`` with ``omega_0 = 0``, ``omega_1 = qd1``,
     ``omega_2 = omega_3 = qd1 + qd2``, so its kinetic energy ``I_mi (omega_{i-1} + k_ri qd_i)^2 / 2`` adds to B
@@ -224,7 +227,7 @@ def rotor_coupling(p: ScaraParams | None = None) -> np.ndarray:
 
 
 def rotor_agreement(n: int = 300, seed: int = 13, p: ScaraParams | None = None) -> dict:
-    """With the rotors on (SPEC values), per library, the largest of
+    """With the rotors on (the values of the introduction's table), per library, the largest of
 
     * ``inertia_minus_coupling``: ``|B_ours - B_lib - Delta_B|``,
     * ``coriolis``, ``gravity``: ``|C_ours - C_lib|``, ``|g_ours - g_lib|`` (the rotors add nothing there),
@@ -261,7 +264,8 @@ def rotor_agreement(n: int = 300, seed: int = 13, p: ScaraParams | None = None) 
 
 def reference_joint_motion(traj=None, p: ScaraParams | None = None):
     """The joint motion that tracks the reference exactly: ``q = k^-1(x_d)`` (closed form, elbow
-    ``theta2 < 0`` as in SPEC section 4), ``qd = J_A^-1 xd_d``, ``qdd = J_A^-1 (xdd_d - Jdot_A qd)``.
+    ``theta2 < 0`` as at the start of chapter 3's reference path), ``qd = J_A^-1 xd_d``,
+    ``qdd = J_A^-1 (xdd_d - Jdot_A qd)``.
 
     Returns ``(t, q, qd, qdd)``; ``traj`` defaults to ``scara.reference_trajectory()``.
     """
@@ -336,7 +340,7 @@ def _print(res: dict) -> None:
         print(f"  {title}, {res['n_dynamics']} random states")
         for lib, e in res[key].items():
             print(f"    {lib:10s} " + "  ".join(f"{k}={v:.1e}" for k, v in e.items()))
-    print("  rotors on (5 kg payload): difference minus the SPEC rotor coupling")
+    print("  rotors on (5 kg payload): difference minus the rotor coupling (eq-verif-rotor-coupling)")
     for lib, e in res["rotors_on"].items():
         print(f"    {lib:10s} " + "  ".join(f"{k}={v:.1e}" for k, v in e.items()))
     r = res["rotor_effect"]

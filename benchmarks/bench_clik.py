@@ -9,7 +9,8 @@ For each method the script times
   (pseudo-inverse with the null-space term); run once, in the same process;
 
 and prints the time per run and per step, the ratio, and the largest joint difference between the two
-(they implement the same recursion, so they agree to rounding). Target (issue 4): at most 20 ms per run.
+(they implement the same recursion, so they agree to rounding). Target (the budget of the verification appendix,
+section Speed): at most 20 ms per run.
 Times are this process's CPU time (``time.process_time``), as in ``run.py``; ``run_time`` is the package's
 own wall-clock timer around the loop.
 
@@ -17,7 +18,6 @@ Run: ``python benchmarks/bench_clik.py [--repeats 20] [--numpy-seconds 70]``.
 """
 from __future__ import annotations
 
-import argparse
 import math
 import statistics
 import time
@@ -27,6 +27,9 @@ import numpy as np
 from scara import ScaraParams, reference_trajectory
 from scara._compile import COMPILED
 from scara.clik import SEED_K, clik, clik2, second_order_gains
+
+# the command line shared by the bench_*.py scripts (this folder is on sys.path when run)
+from bench_simulate import bench_arguments
 
 #: CPU time of this process: on the shared machine the wall clock also counts other processes' turns
 CLOCK = time.process_time
@@ -102,10 +105,7 @@ def numpy_clik2(traj, q0, qd0, n):
 
 # --------------------------------------------------------------------------------------------------
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=20, help="runs of each compiled method (median reported)")
-    ap.add_argument("--numpy-seconds", type=float, default=70.0, help="length of the numpy runs (s of reference)")
-    args = ap.parse_args(argv)
+    args = bench_arguments(argv, __doc__, repeats=20, numpy_seconds=70.0, runs="runs of each compiled method")
 
     traj = reference_trajectory()
     N = len(traj.t)

@@ -14,7 +14,8 @@ The script times
   in the same process, and its time per step is compared with the compiled one;
 
 and prints the time per run and per step, the ratio, and the largest joint difference between the two over the
-common samples (same recursion: they agree to rounding). Target (issue 5): at most 50 ms per 70 s run.
+common samples (same recursion: they agree to rounding). Target (the budget of the verification appendix,
+section Speed): at most 50 ms per 70 s run.
 Times are this process's CPU time (``time.process_time``), as in ``run.py``; ``elapsed`` is the package's
 own wall-clock timer around the loop.
 
@@ -70,6 +71,19 @@ def np_forward(q, qd, tau, p, F):
     return np.linalg.solve(np_inertia(q, p), tau - np_coriolis(q, qd, p) @ qd - F @ qd - np_gravity(p))
 
 
+def np_rk4_step(q, qd, tau, dt, F, p=PLANT):
+    """One classical RK4 step of the plant ``p`` (viscous friction matrix ``F``) over ``dt`` with ``tau`` held:
+    the engine's integration, in numpy. Returns ``(q, qd)`` at the end of the step."""
+    a1 = np_forward(q, qd, tau, p, F)
+    v2 = qd + 0.5 * dt * a1
+    a2 = np_forward(q + 0.5 * dt * qd, v2, tau, p, F)
+    v3 = qd + 0.5 * dt * a2
+    a3 = np_forward(q + 0.5 * dt * v2, v3, tau, p, F)
+    v4 = qd + dt * a3
+    a4 = np_forward(q + dt * v3, v4, tau, p, F)
+    return q + dt / 6 * (qd + 2 * v2 + 2 * v3 + v4), qd + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+
+
 def numpy_closed_loop(ref, q0, qd0, dt, n, K_P, K_D):
     F = np.diag(PLANT.F)
     KP, KD = np.diag(K_P), np.diag(K_D)
@@ -78,24 +92,23 @@ def numpy_closed_loop(ref, q0, qd0, dt, n, K_P, K_D):
     for k in range(n):
         out[k] = q
         tau = KP @ (ref[k, :4] - q) + KD @ (ref[k, 4:8] - qd) + np_gravity(MODEL)
-        a1 = np_forward(q, qd, tau, PLANT, F)
-        v2 = qd + 0.5 * dt * a1
-        a2 = np_forward(q + 0.5 * dt * qd, v2, tau, PLANT, F)
-        v3 = qd + 0.5 * dt * a2
-        a3 = np_forward(q + 0.5 * dt * v2, v3, tau, PLANT, F)
-        v4 = qd + dt * a3
-        a4 = np_forward(q + dt * v3, v4, tau, PLANT, F)
-        q = q + dt / 6 * (qd + 2 * v2 + 2 * v3 + v4)
-        qd = qd + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+        q, qd = np_rk4_step(q, qd, tau, dt, F)
     return out
 
 
 # --------------------------------------------------------------------------------------------------
+def bench_arguments(argv, doc: str, repeats: int, numpy_seconds: float, runs: str = "compiled runs"):
+    """The command line of the ``bench_*.py`` scripts: ``--repeats`` (of ``runs``, median reported) and
+    ``--numpy-seconds`` (the length of the plain-numpy run, in seconds of reference)."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=repeats, help=f"{runs} (median reported)")
+    ap.add_argument("--numpy-seconds", type=float, default=numpy_seconds,
+                    help="length of the numpy run (s of reference)")
+    return ap.parse_args(argv)
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=20, help="compiled runs (median reported)")
-    ap.add_argument("--numpy-seconds", type=float, default=5.0, help="length of the numpy run (s of reference)")
-    args = ap.parse_args(argv)
+    args = bench_arguments(argv, __doc__, repeats=20, numpy_seconds=5.0)
 
     traj = reference_trajectory()
     ref2 = clik2(traj)

@@ -1,15 +1,16 @@
-"""The SPEC robot built in the libraries a student would reach for, plus a plain-numpy twin.
+"""The book's robot (its data on book/intro.md) built in the libraries a student would reach for, plus a
+plain-numpy twin.
 
 Three builders, each from one :class:`scara.ScaraParams`:
 
 * :func:`toolbox_robot` - Peter Corke's Robotics Toolbox for Python (``roboticstoolbox-python``): a
-  ``DHRobot`` of standard-DH links (SPEC section 2) with the base transform ``A_0^b``, link masses,
-  centres of mass, inertia tensors and the toolbox's motor model (``Jm`` rotor inertia, ``G`` gear ratio,
+  ``DHRobot`` of standard-DH links (chapter 1, section The DH table) with the base transform ``A_0^b``, link
+  masses, centres of mass, inertia tensors and the toolbox's motor model (``Jm`` rotor inertia, ``G`` gear ratio,
   ``B`` viscous friction at the motor, no Coulomb friction).
 * :func:`pinocchio_model` - Pinocchio (``pin``): a model built in code, joint by joint, with the same
   frames and inertias; the reflected rotor inertia ``k_r^2 I_m`` goes in ``model.armature``.
-* :class:`NumpyRobot` - the closed-form SPEC formulas written the ordinary way, with numpy arrays built
-  per call: the baseline a student writes before thinking about speed.
+* :class:`NumpyRobot` - the book's closed forms (chapters 1 and 5) written the ordinary way, with numpy arrays
+  built per call: the baseline a student writes before thinking about speed.
 
 Frames and conventions (shared by all three):
 
@@ -24,8 +25,8 @@ Frames and conventions (shared by all three):
   The horizontal moments are set to those of a thin horizontal disc, ``Ixx = Iyy = Izz / 2``, a physical
   tensor; the agreement tests show they change nothing.
 * Rotors: the libraries model each rotor by its reflected inertia on the diagonal only,
-  ``k_ri^2 I_mi``. SPEC section 3 (Siciliano et al., ch. 7) also lets rotor i turn with link i-1, which
-  adds constant off-diagonal and upper-diagonal terms (see ``agreement.rotor_coupling``).
+  ``k_ri^2 I_mi``. Chapter 5, (eq-dyn-rotors) (as in Siciliano et al. 2009, ch. 7), also lets rotor i turn
+  with link i-1, which adds constant off-diagonal and upper-diagonal terms (see ``agreement.rotor_coupling``).
 
 Nothing in ``scara`` imports this module; it needs the optional extras of ``requirements-bench.txt``.
 """
@@ -51,7 +52,7 @@ def _params(p):
 
 
 def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
-    """``A_0^b`` of SPEC section 2: frame 0 at height ``d0`` with its z axis pointing down."""
+    """``A_0^b`` of chapter 1, (eq-kin-base): frame 0 at height ``d0`` with its z axis pointing down."""
     p = _params(p)
     return np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, p.d0], [0, 0, 0, 1.0]])
 
@@ -74,18 +75,18 @@ def _disc(Izz: float, horizontal: float = 0.5) -> np.ndarray:
 # ------------------------------------------------------------------------------------------------------
 def toolbox_robot(p: ScaraParams | None = None, rotors: bool = True, friction: bool = True,
                   horizontal: float = 0.5):
-    """The SPEC robot as a ``roboticstoolbox.DHRobot`` (standard DH, base ``A_0^b``, gravity ``-z`` of base).
+    """The book's robot as a ``roboticstoolbox.DHRobot`` (standard DH, base ``A_0^b``, gravity ``-z`` of base).
 
     Parameters
     ----------
     p : ScaraParams, optional
-        The robot (None: SPEC section 1, no payload). The payload ``m_L`` rides on the quill (link 3).
+        The robot (None: the table of book/intro.md, no payload). The payload ``m_L`` rides on the quill (link 3).
     rotors : bool
         Set the toolbox's rotor inertia ``Jm = I_m`` and gear ratio ``G = k_r``; the toolbox then adds
         ``G^2 Jm qdd`` at each joint. With False, ``Jm = 0``.
     friction : bool
         Viscous friction at the motor ``B = F_m``; the toolbox refers it to the joint as ``G^2 B``, which is
-        ``F`` of SPEC section 3.
+        ``F`` of chapter 5, (eq-dynamics).
     horizontal : float
         Horizontal moments of inertia of links 1, 2, 4 as a multiple of the vertical one (they must not
         matter; the tests vary it).
@@ -107,7 +108,7 @@ def toolbox_robot(p: ScaraParams | None = None, rotors: bool = True, friction: b
                         qlim=[0.0, p.d0], **common[2]),
         rtb.RevoluteDH(a=0.0, alpha=0.0, d=0.0, m=0.0, r=[0.0, 0.0, 0.0], I=_disc(p.I_l4, horizontal), **common[3]),
     ]
-    return rtb.DHRobot(links, name="SCARA (SPEC)", base=SE3(BASE_TRANSFORM(p), check=False),
+    return rtb.DHRobot(links, name="SCARA (scara book)", base=SE3(BASE_TRANSFORM(p), check=False),
                        gravity=[0.0, 0.0, -p.g0])
 
 
@@ -115,7 +116,7 @@ def toolbox_robot(p: ScaraParams | None = None, rotors: bool = True, friction: b
 # Pinocchio
 # ------------------------------------------------------------------------------------------------------
 def pinocchio_model(p: ScaraParams | None = None, rotors: bool = True, horizontal: float = 0.5):
-    """The SPEC robot as a ``pinocchio.Model`` built in code: joints RZ, RZ, PZ, RZ.
+    """The book's robot as a ``pinocchio.Model`` built in code: joints RZ, RZ, PZ, RZ.
 
     Joint 1 is placed at ``A_0^b``; joint i+1 at ``x = a_i`` of joint i's frame (the DH translation), so
     that joint i's frame after its motion is DH frame i-1 turned by ``theta_i`` (or moved by ``d_i``), and
@@ -131,7 +132,7 @@ def pinocchio_model(p: ScaraParams | None = None, rotors: bool = True, horizonta
 
     p = _params(p)
     model = pin.Model()
-    model.name = "scara_spec"
+    model.name = "scara_book"
     A0 = BASE_TRANSFORM(p)
     placements = [
         pin.SE3(A0[:3, :3].copy(), A0[:3, 3].copy()),
@@ -164,10 +165,11 @@ def pinocchio_model(p: ScaraParams | None = None, rotors: bool = True, horizonta
 # plain numpy
 # ------------------------------------------------------------------------------------------------------
 class NumpyRobot:
-    """The closed-form SPEC formulas (sections 2 and 3, rotor coupling included) in plain numpy.
+    """The book's closed forms (chapter 1, (eq-fk) and (eq-jacobian); chapter 5, (eq-dynamics) with the rotor
+    coupling of (eq-dyn-rotors)) in plain numpy.
 
     Each call builds its arrays with ``np.array``/``np.zeros`` and solves with ``np.linalg``: the code a
-    student writes first. Written here from SPEC, independently of ``scara``; the agreement tests compare
+    student writes first. Written here from those equations, independently of ``scara``; the agreement tests compare
     it with ``scara`` too.
     """
 

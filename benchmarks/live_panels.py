@@ -22,7 +22,7 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests"))
+sys.path.insert(0, str(HERE.parent / "tests" / "book"))
 
 import jupyterlab_driver as drv  # noqa: E402
 from test_jupyterlab import PANELS, _act, _control  # noqa: E402
@@ -53,9 +53,9 @@ def measure(chapters, repeats: int) -> dict:
                 lab.open(chapter)
                 data["run_all"][chapter] = lab.run_all()
                 lab.instrument()
-                for k, spec in enumerate(PANELS[chapter]):
+                for k, wanted in enumerate(PANELS[chapter]):
                     panel = lab.panels().nth(k)
-                    for desc, forth, back in _pairs(spec["moves"]):
+                    for desc, forth, back in _pairs(wanted["moves"]):
                         box = _control(lab.page, panel, desc)
                         box.scroll_into_view_if_needed()
                         if back[1] is None and back[0] != "click":  # the value to come back to
@@ -71,7 +71,7 @@ def measure(chapters, repeats: int) -> dict:
                             t = lab.timing_since(mark, panel, before)
                             st = lab.state(panel)
                             data["moves"].append(dict(
-                                chapter=chapter[:2], panel=spec["name"], control=desc, three_d=spec["three_d"],
+                                chapter=chapter[:2], panel=wanted["name"], control=desc, three_d=wanted["three_d"],
                                 refused=bool(lab.message(panel)), latency_ms=t["latency_ms"], redraws=t["redraws"],
                                 compute_ms=st.get("compute_ms"), draw_ms=st.get("draw_ms"), send_ms=st.get("send_ms"),
                                 python_ms=sum(st.get(x, 0.0) for x in ("compute_ms", "draw_ms", "send_ms"))))

@@ -207,7 +207,7 @@ class ToolboxCalls:
 
 
 class NumpyCalls:
-    """The plain-numpy twin (``libraries.NumpyRobot``): closed-form SPEC formulas, arrays built per call."""
+    """The plain-numpy twin (``libraries.NumpyRobot``): the book's closed forms, arrays built per call."""
 
     name = "numpy"
 
@@ -415,11 +415,17 @@ def bench_clik(traj, repeats: int, budget: float) -> dict:
     all_ours, libs = _whole_runs(
         ours, (NumpyCalls(p), PinocchioCalls(p), ToolboxCalls(p)),
         lambda lib, s: clik_loop(lib, xr, vr, q0, traj.dt, SEED_K, s), n, res.q, repeats, budget, 200)
-    out = {"ours": dict(call='scara.clik(traj, "inverse")', seconds=statistics.median(all_ours), steps_timed=n,
-                        extrapolated=False, max_q_difference=0.0, ratio_to_ours=1.0,
-                        loop_only_seconds=statistics.median(loop_alone))}
+    return _run_entry('scara.clik(traj, "inverse")', all_ours, loop_alone, libs,
+                      "Python loop: {name} pose + Jacobian, numpy.linalg.solve", n)
+
+
+def _run_entry(call: str, all_ours, loop_alone, libs: dict, lib_call: str, n: int) -> dict:
+    """The stored entry of a whole-run task: ours (``call``, the reference of every ratio), then each library's
+    timing ``libs[name]`` labelled ``lib_call.format(name=name)``, and the number of samples."""
+    out = {"ours": dict(call=call, seconds=statistics.median(all_ours), steps_timed=n, extrapolated=False,
+                        max_q_difference=0.0, ratio_to_ours=1.0, loop_only_seconds=statistics.median(loop_alone))}
     for name, e in libs.items():
-        e["call"] = f"Python loop: {name} pose + Jacobian, numpy.linalg.solve"
+        e["call"] = lib_call.format(name=name)
         out[name] = e
     out["_samples"] = n
     return out
@@ -452,14 +458,8 @@ def bench_closed_loop(traj, repeats: int, budget: float) -> dict:
         ours, [_Pair(k) for k in pairs],
         lambda lib, s: closed_loop(lib.plant, lib.ctrl, ref, q0, qd0, traj.dt, KP, KD, s), n, res.q, repeats,
         budget, 100)
-    out = {"ours": dict(call="scara.simulate(PDGravityController(), ...)", seconds=statistics.median(all_ours),
-                        steps_timed=n, extrapolated=False, max_q_difference=0.0, ratio_to_ours=1.0,
-                        loop_only_seconds=statistics.median(loop_alone))}
-    for name, e in libs.items():
-        e["call"] = f"Python loop: {name} gravity (controller) + forward dynamics (plant), RK4"
-        out[name] = e
-    out["_samples"] = n
-    return out
+    return _run_entry("scara.simulate(PDGravityController(), ...)", all_ours, loop_alone, libs,
+                      "Python loop: {name} gravity (controller) + forward dynamics (plant), RK4", n)
 
 
 # ------------------------------------------------------------------------------------------------------
@@ -527,7 +527,7 @@ def main(argv=None) -> dict:
                settings=dict(clock="process CPU time (time.process_time)", repeats=repeats, library_run_repeats=max(1, (repeats + 1) // 2), budget_s=budget, quick=args.quick, dt=1e-3, duration_s=70.0,
                              clik_K=SEED_K.tolist(), closed_loop_K_P=PDGravityController().K_P.tolist(),
                              closed_loop_K_D=PDGravityController().K_D.tolist(),
-                             closed_loop_plant="SPEC robot + 5 kg payload, rotor inertias zero",
+                             closed_loop_plant="the book's robot + 5 kg payload, rotor inertias zero",
                              rk4_steps_per_sample=1))
     t_start = time.perf_counter()  # wall clock, for the report only
     if not args.no_agreement:

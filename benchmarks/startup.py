@@ -1,8 +1,9 @@
 """How quickly the package and the book start: the cost of ``import scara`` and of *Run All* per chapter.
 
-The issue's targets: ``import scara`` with a warm compile cache costs at most 0.2 s more than importing numpy
-and numba themselves; *Run All* of any chapter in a fresh kernel with a warm cache takes at most 8 s; the first
-chapter on a fresh machine (cold compile cache) at most 20 s. This script measures, and prints, all three:
+The budgets of the verification appendix (book/appendix_verification.ipynb, section Speed): ``import scara``
+with a warm compile cache costs at most 0.2 s more than importing numpy and numba themselves; *Run All* of any
+chapter in a fresh kernel with a warm cache takes at most 8 s; the first chapter on a fresh machine (cold
+compile cache) at most 20 s. This script measures, and prints, all three:
 
 * import: ``import numpy, numba`` and ``import scara``, each timed inside ``--repeats`` fresh interpreters
   (``time.perf_counter`` around the import statement, so the interpreter's own start-up is left out), taken in

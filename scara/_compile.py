@@ -145,3 +145,60 @@ def ensure_signature(fn, signature):
         raise TypeError(f"{fn.__name__} returns {cres.signature.return_type}, but it must return "
                         f"{signature.return_type} (signature {signature})")
     return fn
+
+
+class ArrayLayout:
+    """Named fields of a flat float array, declared once: what a compiled kernel reads by offset.
+
+    A compiled law receives its gains (and its model) as one flat float array (see
+    :data:`scara.simulate.LAW_SIGNATURE`); declaring the fields here, with their sizes, gives both the offsets
+    the kernel reads (module-level ints, constants to numba) and the one packer that writes the array, so the
+    two cannot drift::
+
+        GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("rho", 1))
+        _KP, _KD, _RHO = GAINS.offsets                      # 0, 4, 8
+        GAINS.pack(K_P=kp, K_D=kd, rho=20.0)                # array of GAINS.size = 9 floats
+
+    >>> ArrayLayout(("K_P", 4), ("rho", 1)).offsets
+    Offsets(K_P=0, rho=4)
+    """
+
+    def __init__(self, *fields):
+        from collections import namedtuple  # noqa: PLC0415
+
+        names = [str(name) for name, _ in fields]
+        if len(set(names)) != len(names):
+            raise ValueError(f"repeated field names in {names}")
+        self.sizes = {name: int(size) for name, size in fields}
+        starts, at = [], 0
+        for name in names:
+            starts.append(at)
+            at += self.sizes[name]
+        #: the offset of each field, in the declared order (unpack them into module-level ints)
+        self.offsets = namedtuple("Offsets", names)(*starts)
+        #: the length of the array
+        self.size = at
+
+    @property
+    def names(self) -> tuple:
+        return self.offsets._fields
+
+    def pack(self, **values):
+        """The flat float array holding ``values`` (one per field, a number or ``size`` numbers) in the
+        declared order. Raises ``ValueError`` naming a missing, unknown or wrongly sized field."""
+        import numpy as np  # noqa: PLC0415
+
+        unknown = sorted(set(values) - set(self.names))
+        missing = [n for n in self.names if n not in values]
+        if unknown or missing:
+            raise ValueError(f"fields {self.names}: missing {missing}, unknown {unknown}")
+        out = np.empty(self.size)
+        for name, start in zip(self.names, self.offsets):
+            v = np.asarray(values[name], dtype=float).ravel()
+            if v.size != self.sizes[name]:
+                raise ValueError(f"field {name!r} holds {self.sizes[name]} numbers, got {v.size}")
+            out[start:start + v.size] = v
+        return out
+
+    def __repr__(self):
+        return "ArrayLayout(" + ", ".join(f"({n!r}, {self.sizes[n]})" for n in self.names) + ")"

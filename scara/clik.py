@@ -1,34 +1,39 @@
 """Closed-loop inverse kinematics (CLIK): turn an operational-space trajectory into joint trajectories.
 
-Four algorithms (SPEC sections 4 and 5; Siciliano et al., *Robotics*, section 3.7), all discretised with
+Four algorithms (chapter 4; Siciliano et al. 2009, section 3.7), all discretised with
 Euler's rule at the trajectory's sampling period ``dt``:
 
-* **Jacobian inverse**: ``qd = J_A^-1 (xd_d + K e)``. The error obeys ``ed = -K e``. Near a
+* **Jacobian inverse** (4.4): ``qd = J_A^-1 (xd_d + K e)``. The error obeys ``ed = -K e``. Near a
   singularity the inverse can be replaced by the damped least-squares inverse
-  ``J^* = J^T (J J^T + lambda^2 I)^-1`` (damped least squares, Siciliano et al., section 3.5), with a constant damping or one that grows only when the
-  manipulability falls below a threshold.
-* **Jacobian transpose**: ``qd = J_A^T K e``. No inversion; the error converges for a constant
+  ``J^* = J^T (J J^T + lambda^2 I)^-1`` (damped least squares (4.15); Siciliano et al. 2009, section 3.5), with
+  a constant damping or one that grows only when the manipulability falls below a threshold.
+* **Jacobian transpose** (4.8): ``qd = J_A^T K e``. No inversion; the error converges for a constant
   reference and lags a moving one.
 * **Pseudo-inverse** with one operational component relaxed (x by default): the arm becomes functionally
-  redundant, ``qd = J_r^+ (xd_r + K_r e_r) + (I - J_r^+ J_r) qd_0`` with ``qd_0 = k_0 grad w_0(q)``
+  redundant, ``qd = J_r^+ (xd_r + K_r e_r) + (I - J_r^+ J_r) qd_0`` (4.13) with ``qd_0 = k_0 grad w_0(q)`` (4.14)
   climbing a dexterity measure (``w_0 = sin^2 theta2`` by default, or the manipulability ``w``).
-* **Second order** (section 3.7.4, with the analytic Jacobian): ``qdd = J_A^-1 (xdd_d + K_D ed + K_P e - Jd_A qd)``,
-  giving the joint positions, velocities and accelerations the control chapter tracks.
+* **Second order** (4.16; Siciliano et al. 2009, section 3.7.4, with the analytic Jacobian):
+  ``qdd = J_A^-1 (xdd_d + K_D ed + K_P e - Jd_A qd)``, giving the joint positions, velocities and
+  accelerations the control chapter tracks.
 
 The loops run in compiled kernels (see :mod:`scara._compile`) with the closed-form kinematics of
-:mod:`scara.kinematics` inside; nothing is allocated per step. Every run checks its settings first
+:mod:`scara.kinematics` inside (its planar building blocks, inlined); nothing is allocated per step. A loop
+takes its data as named records, each declared once with one packer: the reference (:class:`Reference`), the
+law's settings (:class:`FirstOrderLaw`, :class:`SecondOrderLaw`), the arm's lengths
+(:class:`~scara.kinematics.Geometry`) and the arrays it fills (:class:`Series`); it reports how it ended with
+the ``STATUS_*`` codes. Every run checks its settings first
 (positive, finite gains; the discrete-time stability limits derived below; a reachable reference) and stops
 with an :class:`~scara.errors.UnstableError` giving the time and the cause if it diverges anyway.
 
 Discrete-time stability (Euler, sampling period ``dt``). Linearising one step,
 ``e_{k+1} = e_k + (x_d,k+1 - x_d,k) - J_A (q_{k+1} - q_k)``:
 
-* inverse: ``e_{k+1} = (I - dt K) e_k + O(dt^2)``, stable iff ``0 < dt K_i < 2`` for every component;
+* inverse (4.6): ``e_{k+1} = (I - dt K) e_k + O(dt^2)``, stable iff ``0 < dt K_i < 2`` for every component;
 * transpose: ``e_{k+1} = (I - dt J_A J_A^T K) e_k + ...``. ``J_A J_A^T K`` is similar to the symmetric
   ``K^1/2 J_A J_A^T K^1/2`` (and to ``J_A^T K J_A``, the matrix of the joint-space iteration), so its
   eigenvalues ``mu_i(q)`` are real and positive and the step is stable iff ``dt mu_max(q) < 2`` at every
-  configuration met. :func:`transpose_stability` evaluates ``mu_max`` along the reference;
-* second order, per component with ``a = dt K_D``, ``b = dt^2 K_P``: the characteristic polynomial
+  configuration met (4.12). :func:`transpose_stability` evaluates ``mu_max`` along the reference;
+* second order, per component with ``a = dt K_D``, ``b = dt^2 K_P``: the characteristic polynomial (4.17)
   ``z^2 - (2 - a) z + (1 - a + b)`` has both roots inside the unit circle iff ``b < a`` and ``2 a - b < 4``
   (Jury's test); with ``K_D = 2 omega``, ``K_P = omega^2`` both poles sit at ``z = 1 - omega dt``.
 """
@@ -36,13 +41,17 @@ from __future__ import annotations
 
 import math
 import time
+from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ._compile import kernel
 from .errors import ScaraError, ShapeError, UnreachableError, UnstableError, as_array
-from .kinematics import _params, check_reachable, ikine, is_reachable, jacobian_kernel, pose_kernel
+from .gains import gain_vector
+from .kinematics import (_params, check_reachable, elbow_cosine, geometry, ikine, is_reachable, jacobian_kernel,
+                         planar_det, planar_jacobian, planar_jacobian_at, planar_jacobian_dot, planar_position,
+                         planar_trig, pose_kernel)
 from .params import ScaraParams
 
 __all__ = [
@@ -63,29 +72,67 @@ __all__ = [
 METHODS = ("inverse", "transpose", "pseudoinverse")
 #: names of the operational components, in the order of ``x_e``
 COMPONENTS = ("x", "y", "z", "phi")
-#: the SPEC's seed gains for the inverse and transpose methods (1/s for the inverse)
+#: the seed gains of chapter 4 for the inverse and transpose methods (1/s for the inverse)
 SEED_K = (400.0, 400.0, 400.0, 100.0)
 #: dexterity measures the pseudo-inverse's null-space term can climb
 OBJECTIVES = ("sin2", "manipulability")
 
-_METHOD_CODE = {"inverse": 0, "transpose": 1, "pseudoinverse": 2}
-_OBJECTIVE_CODE = {"sin2": 0, "manipulability": 1}
+#: codes of the methods and objectives inside the compiled loops
+METHOD_INVERSE = 0
+METHOD_TRANSPOSE = 1
+METHOD_PSEUDOINVERSE = 2
+OBJECTIVE_SIN2 = 0
+OBJECTIVE_MANIPULABILITY = 1
+_METHOD_CODE = {"inverse": METHOD_INVERSE, "transpose": METHOD_TRANSPOSE, "pseudoinverse": METHOD_PSEUDOINVERSE}
+_OBJECTIVE_CODE = {"sin2": OBJECTIVE_SIN2, "manipulability": OBJECTIVE_MANIPULABILITY}
+
+#: status codes a compiled loop writes into ``info[0]``
+STATUS_DONE = 0
+STATUS_NONFINITE = 1
+STATUS_ERROR_BOUND = 2
+STATUS_SINGULAR = 3
 _CAUSES = {
-    1: "a value became NaN or infinite",
-    2: "the tracking error exceeded max_error",
-    3: "the Jacobian became singular",
+    STATUS_NONFINITE: "a value became NaN or infinite",
+    STATUS_ERROR_BOUND: "the tracking error exceeded max_error",
+    STATUS_SINGULAR: "the Jacobian became singular",
 }
 _SINGULAR_TOL = 1e-12  # |det J_A| (m^2) or Cholesky pivot below which the solve is refused
+
+
+# --------------------------------------------------------------------------------------------------
+# named data of the compiled loops: each record is declared once and built by one packer (see "packers")
+# --------------------------------------------------------------------------------------------------
+#: the reference the loop tracks: ``x``, ``xd`` (N, 4) and, for the second-order law, ``xdd`` (N, 4)
+Reference = namedtuple("Reference", "x xd xdd")
+#: the settings of the first-order laws (4.4), (4.8), (4.13), (4.15)
+FirstOrderLaw = namedtuple("FirstOrderLaw", "dt method K keep lam0sq w_thr k0 objective max_err")
+#: the settings of the second-order law (4.16)
+SecondOrderLaw = namedtuple("SecondOrderLaw", "dt K_P K_D lam0sq w_thr max_err")
+#: the arrays a loop fills: ``q, qd, qdd, x, e`` (N, 4) and ``w`` (N,); ``qdd`` is empty for a first-order run
+Series = namedtuple("Series", "q qd qdd x e w")
 
 
 # --------------------------------------------------------------------------------------------------
 # compiled kernels
 # --------------------------------------------------------------------------------------------------
 @kernel
-def _solve_kept_s(j11, j12, j21, j22, kx, ky, kz, kp, lam2, v0, v1, v2, v3, g2):
-    """Scalar core of :func:`_solve_kept`: ``(ok, out0, out1, out2, out3)`` from the four non-constant entries
-    of ``J_A`` (``j11 = J[0, 0]``, ``j12 = J[0, 1]``, ``j21 = J[1, 0]``, ``j22 = J[1, 1]``), the kept flags, the
-    damping ``lam2``, the right-hand side ``v`` and the null-space gradient ``g2``."""
+def _solve_kept(J, keep, lam2, v, g2):
+    """``(ok, u)`` with ``u = g + J_r^T (J_r J_r^T + lam2 I)^-1 (v - J_r g)`` and ``g = [0, g2, 0, 0]``;
+    ``ok`` is False if the system is singular.
+
+    ``J = (J_11, J_12, J_21, J_22)`` are the non-constant entries of ``J_A`` (1.6); ``keep`` and ``v`` are
+    4-tuples (tuples, not arrays, so that a call counts no references). ``J_r`` holds the rows of ``J_A``
+    with ``keep[i] = 1`` (a dropped row acts as a zero row, its multiplier
+    is 0). With ``lam2 = 0`` this is the pseudo-inverse solution plus the null-space projection of ``g``,
+    ``J_r^+ v + (I - J_r^+ J_r) g`` (4.13) (all rows kept and ``g = 0``: ``J^-1 v``); with ``lam2 > 0`` the
+    damped least-squares solution (4.15). Row z of ``J_A`` is ``[0, 0, -1, 0]`` and row phi ``[1, 1, 0, 1]``,
+    so z decouples and the x, y, phi block is a 3x3 symmetric positive definite system, solved here by an
+    unrolled Cholesky factorisation.
+    """
+    j11, j12, j21, j22 = J
+    kx, ky, kz, kp = keep
+    v0, v1, v2, v3 = v
+    fail = (False, (0.0, 0.0, 0.0, 0.0))
     a00 = kx * (j11 * j11 + j12 * j12 + lam2) + (1.0 - kx)
     a01 = kx * ky * (j11 * j21 + j12 * j22)
     a02 = kx * kp * (j11 + j12)
@@ -96,18 +143,18 @@ def _solve_kept_s(j11, j12, j21, j22, kx, ky, kz, kp, lam2, v0, v1, v2, v3, g2):
     b1 = ky * (v1 - j22 * g2)
     b2 = kp * (v3 - g2)
     if not a00 > _SINGULAR_TOL:
-        return False, 0.0, 0.0, 0.0, 0.0
+        return fail
     l00 = math.sqrt(a00)
     l10 = a01 / l00
     l20 = a02 / l00
     d11 = a11 - l10 * l10
     if not d11 > _SINGULAR_TOL:
-        return False, 0.0, 0.0, 0.0, 0.0
+        return fail
     l11 = math.sqrt(d11)
     l21 = (a12 - l20 * l10) / l11
     d22 = a22 - l20 * l20 - l21 * l21
     if not d22 > _SINGULAR_TOL:
-        return False, 0.0, 0.0, 0.0, 0.0
+        return fail
     l22 = math.sqrt(d22)
     z0 = b0 / l00
     z1 = (b1 - l10 * z0) / l11
@@ -115,92 +162,114 @@ def _solve_kept_s(j11, j12, j21, j22, kx, ky, kz, kp, lam2, v0, v1, v2, v3, g2):
     y2 = z2 / l22
     y1 = (z1 - l21 * y2) / l11
     y0 = (z0 - l10 * y1 - l20 * y2) / l00
-    return (True, j11 * y0 + j21 * y1 + y2, g2 + j12 * y0 + j22 * y1 + y2, -kz * v2 / (1.0 + lam2), y2)
+    return True, (j11 * y0 + j21 * y1 + y2, g2 + j12 * y0 + j22 * y1 + y2, -kz * v2 / (1.0 + lam2), y2)
 
 
 @kernel
-def _solve_kept(J, keep, lam2, v, g2, out):
-    """``out = g + J_r^T (J_r J_r^T + lam2 I)^-1 (v - J_r g)`` with ``g = [0, g2, 0, 0]``; returns False if singular.
+def _solve_exact(J, v):
+    """``(ok, J_A^-1 v)`` in closed form from the entries ``J`` of (1.6); ``ok`` is False if singular.
 
-    ``J_r`` holds the rows of ``J`` (4, 4) with ``keep[i] = 1`` (a dropped row acts as a zero row, its
-    multiplier is 0). With ``lam2 = 0`` this is the pseudo-inverse solution plus the null-space projection of
-    ``g``, ``J_r^+ v + (I - J_r^+ J_r) g`` (all rows kept and ``g = 0``: ``J^-1 v``); with ``lam2 > 0`` the
-    damped least-squares solution. It uses the structure of ``J_A`` (SPEC section 2): rows x and y only
-    involve ``theta1, theta2``, row z is ``[0, 0, -1, 0]`` and row phi is ``[1, 1, 0, 1]``; so z decouples and
-    the x, y, phi block is a 3x3 symmetric positive definite system solved by an unrolled Cholesky factorisation
-    (:func:`_solve_kept_s`, which the loops call with the entries in scalars).
+    The x, y rows give a 2x2 system in ``theta1, theta2`` with determinant ``-a1 a2 sin theta2`` (1.7); then
+    ``d3_dot = -v_z`` and ``theta4_dot = v_phi - theta1_dot - theta2_dot``.
     """
-    ok, o0, o1, o2, o3 = _solve_kept_s(J[0, 0], J[0, 1], J[1, 0], J[1, 1], keep[0], keep[1], keep[2], keep[3],
-                                       lam2, v[0], v[1], v[2], v[3], g2)
-    if ok:
-        out[0] = o0
-        out[1] = o1
-        out[2] = o2
-        out[3] = o3
-    return ok
-
-
-@kernel
-def _solve_exact_s(j11, j12, j21, j22, v0, v1, v2, v3):
-    """``J^-1 v`` in closed form for the analytic Jacobian of SPEC section 2: ``(ok, u1, u2, u3, u4)``.
-
-    The x, y rows give a 2x2 system in ``theta1, theta2`` with determinant ``-a1 a2 sin theta2``;
-    then ``d3_dot = -v_z`` and ``theta4_dot = v_phi - theta1_dot - theta2_dot``. ``ok`` is False if singular.
-    """
-    det = j11 * j22 - j12 * j21
+    j11, j12, j21, j22 = J
+    v0, v1, v2, v3 = v
+    det = planar_det(J)
     if not abs(det) > _SINGULAR_TOL:
-        return False, 0.0, 0.0, 0.0, 0.0
+        return False, (0.0, 0.0, 0.0, 0.0)
     u1 = (j22 * v0 - j12 * v1) / det
     u2 = (j11 * v1 - j21 * v0) / det
-    return True, u1, u2, -v2, v3 - u1 - u2
+    return True, (u1, u2, -v2, v3 - u1 - u2)
 
 
 @kernel
-def _track_step(k, xr, q1, q2, q3, q4, a1, a2, d0, keep, max_err, x, e, w):
-    """Pose, error and manipulability at step ``k`` from the joint values in scalars.
+def _track_step(k, qk, xr, arm, bounds, x, e, w):
+    """Pose ``x_e`` (1.5), error ``e = x_d - x_e`` (4.3) and manipulability ``w = |det J_A|`` (1.7), (2.4) at step
+    ``k`` from the joint values ``qk`` (a 4-tuple), written into row ``k`` of ``x``, ``e``, ``w``.
 
-    Returns ``(status, j11, j12, j21, j22)``: status 0, 1 (non-finite) or 2 (error above ``max_err`` on a
-    kept component), and the four non-constant entries of ``J_A`` (SPEC section 2), from the step's only four
-    trigonometric calls: ``p_x = -J_21``, ``p_y = J_11``, ``p_z = d0 - d3``, ``phi = theta1 + theta2 + theta4``,
-    and ``w = |det J_A| = |J_11 J_22 - J_12 J_21|``.
+    Returns ``(status, sc, J, ek)``: the :func:`_error_status` of the error against ``bounds``, the step's
+    trigonometric values ``sc = planar_trig(theta1, theta2)``, the entries ``J`` of ``J_A`` (1.6) and the error
+    as a 4-tuple.
     """
-    t12 = q1 + q2
-    s1 = math.sin(q1)
-    c1 = math.cos(q1)
-    s12 = math.sin(t12)
-    c12 = math.cos(t12)
-    j11 = -(a1 * s1 + a2 * s12)
-    j12 = -a2 * s12
-    j21 = -(a1 * c1 + a2 * c12)
-    j22 = -a2 * c12
-    x0 = -j21
-    x1 = j11
-    x2 = d0 - q3
-    x3 = t12 + q4
-    x[k, 0] = x0
-    x[k, 1] = x1
-    x[k, 2] = x2
-    x[k, 3] = x3
-    w[k] = abs(j11 * j22 - j12 * j21)
-    e0 = xr[k, 0] - x0
-    e1 = xr[k, 1] - x1
-    e2 = xr[k, 2] - x2
-    e3 = xr[k, 3] - x3
-    e[k, 0] = e0
-    e[k, 1] = e1
-    e[k, 2] = e2
-    e[k, 3] = e3
+    sc = planar_trig(qk[0], qk[1])
+    J = planar_jacobian(sc, arm.a1, arm.a2)
+    x0, x1 = planar_position(sc, arm.a1, arm.a2)
+    x2 = arm.d0 - qk[2]
+    x3 = qk[0] + qk[1] + qk[3]
+    _set_row(x, k, (x0, x1, x2, x3))
+    w[k] = abs(planar_det(J))
+    ek = (xr[k, 0] - x0, xr[k, 1] - x1, xr[k, 2] - x2, xr[k, 3] - x3)
+    _set_row(e, k, ek)
+    return _error_status(ek, bounds), sc, J, ek
+
+
+@kernel
+def _error_bounds(keep, max_err):
+    """The bound on each error component: ``max_err`` where ``keep[i] > 0``, infinite on a relaxed one."""
+    return (max_err if keep[0] > 0.0 else math.inf, max_err if keep[1] > 0.0 else math.inf,
+            max_err if keep[2] > 0.0 else math.inf, max_err if keep[3] > 0.0 else math.inf)
+
+
+@kernel
+def _error_status(ek, bounds):
+    """:data:`STATUS_NONFINITE` if the error ``ek`` holds a NaN or an infinity, :data:`STATUS_ERROR_BOUND` if a
+    component is above its bound (:func:`_error_bounds`), else :data:`STATUS_DONE`."""
+    e0, e1, e2, e3 = ek
     if not (math.isfinite(e0) and math.isfinite(e1) and math.isfinite(e2) and math.isfinite(e3)):
-        return 1, j11, j12, j21, j22
-    if ((keep[0] > 0.0 and abs(e0) > max_err) or (keep[1] > 0.0 and abs(e1) > max_err)
-            or (keep[2] > 0.0 and abs(e2) > max_err) or (keep[3] > 0.0 and abs(e3) > max_err)):
-        return 2, j11, j12, j21, j22
-    return 0, j11, j12, j21, j22
+        return STATUS_NONFINITE
+    if abs(e0) > bounds[0] or abs(e1) > bounds[1] or abs(e2) > bounds[2] or abs(e3) > bounds[3]:
+        return STATUS_ERROR_BOUND
+    return STATUS_DONE
+
+
+@kernel
+def _set_row(a, k, s):
+    """``a[k] = s`` for a 4-tuple ``s``."""
+    a[k, 0] = s[0]
+    a[k, 1] = s[1]
+    a[k, 2] = s[2]
+    a[k, 3] = s[3]
+
+
+@kernel
+def _euler(qk, dt, s):
+    """Euler's rule (4.2): ``qk + dt s`` for 4-tuples."""
+    return qk[0] + dt * s[0], qk[1] + dt * s[1], qk[2] + dt * s[2], qk[3] + dt * s[3]
+
+
+@kernel
+def _solution_status(ok, s):
+    """:data:`STATUS_SINGULAR` if the solve refused, :data:`STATUS_NONFINITE` if ``s`` holds a NaN or an
+    infinity, else :data:`STATUS_DONE`."""
+    if not ok:
+        return STATUS_SINGULAR
+    if not (math.isfinite(s[0]) and math.isfinite(s[1]) and math.isfinite(s[2]) and math.isfinite(s[3])):
+        return STATUS_NONFINITE
+    return STATUS_DONE
+
+
+@kernel
+def _solve_step(J, keep, lam2, v, g2, exact):
+    """``(status, s)``: the rates ``s`` solving ``J_A s = v`` for one step, by the closed-form inverse where
+    ``exact`` is set and there is no damping (``lam2 = 0``), else by :func:`_solve_kept` (pseudo-inverse or
+    damped least squares, null-space rate ``g2``); ``status`` from :func:`_solution_status`."""
+    if exact and lam2 == 0.0:
+        ok, s = _solve_exact(J, v)
+    else:
+        ok, s = _solve_kept(J, keep, lam2, v, g2)
+    return _solution_status(ok, s), s
+
+
+@kernel
+def _stop(info, status, k):
+    """Record why and where the loop stopped: ``info = [status, k]``."""
+    info[0] = status
+    info[1] = k
 
 
 @kernel
 def _damping_at(lam0sq, w_thr, wk):
-    """The damping ``lambda^2`` at manipulability ``wk``: ``lam0sq``, or with a threshold
+    """The damping ``lambda^2`` of (4.15) at manipulability ``wk``: ``lam0sq``, or with a threshold
     ``lam0sq (1 - (w / w_thr)^2)`` below it and 0 above."""
     if w_thr > 0.0:
         return lam0sq * (1.0 - (wk / w_thr) ** 2) if wk < w_thr else 0.0
@@ -208,162 +277,111 @@ def _damping_at(lam0sq, w_thr, wk):
 
 
 @kernel
-def _clik1_kernel(xr, vr, dt, method, K, keep, lam0sq, w_thr, k0, objective, a1, a2, d0, max_err,
-                  q, qd, x, e, w, info):
-    """First-order CLIK loop (inverse, transpose, pseudo-inverse), Euler rule ``q_{k+1} = q_k + dt qd_k``.
+def _null_space_rate(objective, k0, t2, a1, a2):
+    """``k0 dw_0/dtheta2``, the only non-zero entry of ``qd_0 = k0 grad w_0`` (4.14): ``w_0 = sin^2 theta2``
+    or the manipulability ``a1 a2 |sin theta2|``."""
+    if objective == OBJECTIVE_SIN2:
+        return k0 * math.sin(2.0 * t2)
+    return k0 * a1 * a2 * math.cos(t2) * (1.0 if math.sin(t2) >= 0.0 else -1.0)
 
-    Inputs: reference ``xr``, ``vr`` (N, 4); ``method`` 0/1/2; ``K`` (4,) diagonal gains; ``keep`` (4,) 1.0
-    for controlled components; damping ``lam0sq`` (lambda^2) applied in full, or scaled by
-    ``1 - (w / w_thr)^2`` below ``w_thr`` when ``w_thr > 0``; null-space gain ``k0`` and ``objective`` (0:
-    sin^2 theta2, 1: manipulability). ``q[0]`` holds the start configuration. Outputs ``q, qd, x, e`` (N, 4)
-    and ``w`` (N,). ``info`` (2,) receives ``[status, step]``: 0 done, 1 non-finite, 2 error above
-    ``max_err`` on a kept component, 3 singular Jacobian. The joint values, the Jacobian's entries and the
+
+@kernel
+def _clik1_kernel(ref, law, arm, out, info):
+    """First-order CLIK loop (inverse (4.4), transpose (4.8), pseudo-inverse (4.13)), Euler's rule
+    ``q_{k+1} = q_k + dt qd_k`` (4.2).
+
+    ``ref`` a :class:`Reference`, ``law`` a :class:`FirstOrderLaw`, ``arm`` a :class:`Geometry`, ``out`` a
+    :class:`Series` whose ``q[0]`` holds the start configuration. The damping ``law.lam0sq`` (lambda^2)
+    applies in full, or scaled by ``1 - (w / w_thr)^2`` below ``law.w_thr`` when that is > 0. ``info`` (2,)
+    receives ``[status, step]`` (the ``STATUS_*`` constants). The joint values, the Jacobian's entries and the
     step's vectors live in scalars: nothing is allocated and no 4x4 matrix is formed.
     """
+    # the records' arrays are read once here: reading them inside the loop would count references every step
+    xr, vr = ref.x, ref.xd
+    q, qd, x, e, w = out.q, out.qd, out.x, out.e, out.w
+    K0, K1, K2, K3 = law.K[0], law.K[1], law.K[2], law.K[3]
+    keep = (law.keep[0], law.keep[1], law.keep[2], law.keep[3])
+    bounds = _error_bounds(keep, law.max_err)
+    method = law.method
     n = xr.shape[0]
-    K0 = K[0]
-    K1 = K[1]
-    K2 = K[2]
-    K3 = K[3]
-    q1 = q[0, 0]
-    q2 = q[0, 1]
-    q3 = q[0, 2]
-    q4 = q[0, 3]
-    info[0] = 0
-    info[1] = n - 1
+    qk = (q[0, 0], q[0, 1], q[0, 2], q[0, 3])
+    _stop(info, STATUS_DONE, n - 1)
     for k in range(n):
-        q[k, 0] = q1
-        q[k, 1] = q2
-        q[k, 2] = q3
-        q[k, 3] = q4
-        status, j11, j12, j21, j22 = _track_step(k, xr, q1, q2, q3, q4, a1, a2, d0, keep, max_err, x, e, w)
-        if status != 0:
-            info[0] = status
-            info[1] = k
+        _set_row(q, k, qk)
+        status, sc, J, ek = _track_step(k, qk, xr, arm, bounds, x, e, w)
+        if status != STATUS_DONE:
+            _stop(info, status, k)
             return
-        e0 = e[k, 0]
-        e1 = e[k, 1]
-        e2 = e[k, 2]
-        e3 = e[k, 3]
-        ok = True
-        if method == 1:  # transpose: qd = J^T K e (the zero entries of J_A dropped)
-            s0 = j11 * K0 * e0 + j21 * K1 * e1 + K3 * e3
-            s1 = j12 * K0 * e0 + j22 * K1 * e1 + K3 * e3
-            s2 = -K2 * e2
-            s3 = K3 * e3
+        j11, j12, j21, j22 = J
+        e0, e1, e2, e3 = ek
+        if method == METHOD_TRANSPOSE:  # qd = J^T K e (the zero entries of J_A dropped)
+            s = (j11 * K0 * e0 + j21 * K1 * e1 + K3 * e3, j12 * K0 * e0 + j22 * K1 * e1 + K3 * e3, -K2 * e2, K3 * e3)
+            status = _solution_status(True, s)
         else:
-            v0 = vr[k, 0] + K0 * e0
-            v1 = vr[k, 1] + K1 * e1
-            v2 = vr[k, 2] + K2 * e2
-            v3 = vr[k, 3] + K3 * e3
-            lam2 = _damping_at(lam0sq, w_thr, w[k])
-            if method == 0 and lam2 == 0.0:
-                ok, s0, s1, s2, s3 = _solve_exact_s(j11, j12, j21, j22, v0, v1, v2, v3)
-            else:
-                g2 = 0.0
-                if method == 2 and k0 != 0.0:
-                    if objective == 0:  # grad of sin^2 theta2
-                        g2 = k0 * math.sin(2.0 * q2)
-                    else:  # grad of a1 a2 |sin theta2|
-                        g2 = k0 * a1 * a2 * math.cos(q2) * (1.0 if math.sin(q2) >= 0.0 else -1.0)
-                ok, s0, s1, s2, s3 = _solve_kept_s(j11, j12, j21, j22, keep[0], keep[1], keep[2], keep[3], lam2,
-                                                   v0, v1, v2, v3, g2)
-        if not ok:
-            info[0] = 3
-            info[1] = k
+            v = (vr[k, 0] + K0 * e0, vr[k, 1] + K1 * e1, vr[k, 2] + K2 * e2, vr[k, 3] + K3 * e3)
+            g2 = 0.0
+            if method == METHOD_PSEUDOINVERSE and law.k0 != 0.0:
+                g2 = _null_space_rate(law.objective, law.k0, qk[1], arm.a1, arm.a2)
+            status, s = _solve_step(J, keep, _damping_at(law.lam0sq, law.w_thr, w[k]), v, g2,
+                                    method == METHOD_INVERSE)
+        if status != STATUS_DONE:
+            _stop(info, status, k)
             return
-        if not (math.isfinite(s0) and math.isfinite(s1) and math.isfinite(s2) and math.isfinite(s3)):
-            info[0] = 1
-            info[1] = k
-            return
-        qd[k, 0] = s0
-        qd[k, 1] = s1
-        qd[k, 2] = s2
-        qd[k, 3] = s3
-        q1 += dt * s0
-        q2 += dt * s1
-        q3 += dt * s2
-        q4 += dt * s3
+        _set_row(qd, k, s)
+        qk = _euler(qk, law.dt, s)
 
 
 @kernel
-def _clik2_kernel(xr, vr, ar, dt, KP, KD, lam0sq, w_thr, a1, a2, d0, max_err, q, qd, qdd, x, e, w, info):
-    """Second-order CLIK loop: ``qdd_k = J^-1 (xdd_d + K_D ed + K_P e - Jd qd)`` (or its damped form), then
-    Euler ``q_{k+1} = q_k + dt qd_k``, ``qd_{k+1} = qd_k + dt qdd_k``. ``q[0]``, ``qd[0]`` hold the start.
-    Same ``info`` codes as :func:`_clik1_kernel`.
+def _clik2_kernel(ref, law, arm, out, info):
+    """Second-order CLIK loop (4.16): ``qdd_k = J^-1 (xdd_d + K_D ed + K_P e - Jd qd)`` (or its damped form),
+    then Euler ``q_{k+1} = q_k + dt qd_k``, ``qd_{k+1} = qd_k + dt qdd_k``.
 
-    ``Jd qd`` comes from the entries of ``J`` with no more trigonometry: differentiating SPEC section 2 gives
-    ``Jd_11 = J_21 w1 + J_22 qd2``, ``Jd_12 = J_22 w12``, ``Jd_21 = -J_11 w1 - J_12 qd2``, ``Jd_22 = -J_12 w12``
-    (``w1 = qd1``, ``w12 = qd1 + qd2``), the only non-zero entries (as in ``jacobian_dot_kernel``).
+    Arguments as for :func:`_clik1_kernel` with a :class:`SecondOrderLaw`; ``out.q[0]`` and ``out.qd[0]``
+    hold the start. ``Jd qd`` comes from :func:`~scara.kinematics.planar_jacobian_dot` with the step's
+    trigonometric values, no more trigonometric calls.
     """
+    # the records' arrays are read once here (see _clik1_kernel)
+    xr, vr, ar = ref.x, ref.xd, ref.xdd
+    q, qd, qdd, x, e, w = out.q, out.qd, out.qdd, out.x, out.e, out.w
+    KP, KD = law.K_P, law.K_D
     n = xr.shape[0]
-    keep = np.ones(4)
-    q1 = q[0, 0]
-    q2 = q[0, 1]
-    q3 = q[0, 2]
-    q4 = q[0, 3]
-    u1 = qd[0, 0]
-    u2 = qd[0, 1]
-    u3 = qd[0, 2]
-    u4 = qd[0, 3]
-    info[0] = 0
-    info[1] = n - 1
+    keep = (1.0, 1.0, 1.0, 1.0)
+    bounds = _error_bounds(keep, law.max_err)
+    qk = (q[0, 0], q[0, 1], q[0, 2], q[0, 3])
+    uk = (qd[0, 0], qd[0, 1], qd[0, 2], qd[0, 3])
+    _stop(info, STATUS_DONE, n - 1)
     for k in range(n):
-        q[k, 0] = q1
-        q[k, 1] = q2
-        q[k, 2] = q3
-        q[k, 3] = q4
-        qd[k, 0] = u1
-        qd[k, 1] = u2
-        qd[k, 2] = u3
-        qd[k, 3] = u4
-        status, j11, j12, j21, j22 = _track_step(k, xr, q1, q2, q3, q4, a1, a2, d0, keep, max_err, x, e, w)
-        if status != 0:
-            info[0] = status
-            info[1] = k
+        _set_row(q, k, qk)
+        _set_row(qd, k, uk)
+        u1, u2, u3, u4 = uk
+        status, sc, J, ek = _track_step(k, qk, xr, arm, bounds, x, e, w)
+        if status != STATUS_DONE:
+            _stop(info, status, k)
             return
-        w1 = u1
-        w12 = u1 + u2
-        jdq_x = (j21 * w1 + j22 * u2) * u1 + j22 * w12 * u2
-        jdq_y = -(j11 * w1 + j12 * u2) * u1 - j12 * w12 * u2
-        xd_x = j11 * u1 + j12 * u2
-        xd_y = j21 * u1 + j22 * u2
-        xd_z = -u3
-        xd_p = u1 + u2 + u4
-        v0 = ar[k, 0] + KD[0] * (vr[k, 0] - xd_x) + KP[0] * e[k, 0] - jdq_x
-        v1 = ar[k, 1] + KD[1] * (vr[k, 1] - xd_y) + KP[1] * e[k, 1] - jdq_y
-        v2 = ar[k, 2] + KD[2] * (vr[k, 2] - xd_z) + KP[2] * e[k, 2]
-        v3 = ar[k, 3] + KD[3] * (vr[k, 3] - xd_p) + KP[3] * e[k, 3]
-        lam2 = _damping_at(lam0sq, w_thr, w[k])
-        if lam2 == 0.0:
-            ok, s0, s1, s2, s3 = _solve_exact_s(j11, j12, j21, j22, v0, v1, v2, v3)
-        else:
-            ok, s0, s1, s2, s3 = _solve_kept_s(j11, j12, j21, j22, 1.0, 1.0, 1.0, 1.0, lam2, v0, v1, v2, v3, 0.0)
-        if not ok:
-            info[0] = 3
-            info[1] = k
+        j11, j12, j21, j22 = J
+        jd11, jd12, jd21, jd22 = planar_jacobian_dot(sc, arm.a1, arm.a2, u1, u1 + u2)
+        # x_e velocity J_A qd (4.1) and the term Jd_A qd
+        xd = (j11 * u1 + j12 * u2, j21 * u1 + j22 * u2, -u3, u1 + u2 + u4)
+        jdq_x = jd11 * u1 + jd12 * u2
+        jdq_y = jd21 * u1 + jd22 * u2
+        v = (ar[k, 0] + KD[0] * (vr[k, 0] - xd[0]) + KP[0] * ek[0] - jdq_x,
+             ar[k, 1] + KD[1] * (vr[k, 1] - xd[1]) + KP[1] * ek[1] - jdq_y,
+             ar[k, 2] + KD[2] * (vr[k, 2] - xd[2]) + KP[2] * ek[2],
+             ar[k, 3] + KD[3] * (vr[k, 3] - xd[3]) + KP[3] * ek[3])
+        status, s = _solve_step(J, keep, _damping_at(law.lam0sq, law.w_thr, w[k]), v, 0.0, True)
+        if status != STATUS_DONE:
+            _stop(info, status, k)
             return
-        if not (math.isfinite(s0) and math.isfinite(s1) and math.isfinite(s2) and math.isfinite(s3)):
-            info[0] = 1
-            info[1] = k
-            return
-        qdd[k, 0] = s0
-        qdd[k, 1] = s1
-        qdd[k, 2] = s2
-        qdd[k, 3] = s3
-        q1 += dt * u1
-        q2 += dt * u2
-        q3 += dt * u3
-        q4 += dt * u4
-        u1 += dt * s0
-        u2 += dt * s1
-        u3 += dt * s2
-        u4 += dt * s3
+        _set_row(qdd, k, s)
+        qk = _euler(qk, law.dt, uk)
+        uk = _euler(uk, law.dt, s)
 
 
 @kernel
-def _sym3_max_eig(s00, s01, s02, s11, s12, s22):
-    """Largest eigenvalue of a symmetric 3x3 matrix, closed form (trigonometric solution of the cubic)."""
+def _sym3_max_eig(S):
+    """Largest eigenvalue of the symmetric 3x3 matrix ``S = (s00, s01, s02, s11, s12, s22)``, in closed form
+    (trigonometric solution of the cubic)."""
+    s00, s01, s02, s11, s12, s22 = S
     p1 = s01 * s01 + s02 * s02 + s12 * s12
     qm = (s00 + s11 + s22) / 3.0
     d0 = s00 - qm
@@ -390,32 +408,34 @@ def _sym3_max_eig(s00, s01, s02, s11, s12, s22):
 
 
 @kernel
-def _position_gram(px, py, a1, a2, elbow):
-    """Entries ``(g_xx, g_yy, g_xy, g_xphi, g_yphi)`` of ``J_3 J_3^T`` (rows x, y, phi of ``J_A``) at the
-    inverse-kinematics configuration of the horizontal position ``(px, py)``, computed without any angle.
+def _ik_sc12(px, py, a1, a2, elbow):
+    """``(s12, c12)``, the sine and cosine of ``theta1 + theta2`` at the inverse-kinematics configuration
+    (1.9), (1.10) of the horizontal position ``(px, py)``, computed without any angle.
 
-    ``cos theta2 = (r^2 - a1^2 - a2^2) / (2 a1 a2)``, ``sin theta2 = elbow sqrt(1 - cos^2)``; with
-    ``alpha = a1 c2 + a2`` and ``beta = a1 s2`` (``alpha^2 + beta^2 = r^2``), ``c12 = (alpha p_x + beta p_y) / r^2``
-    and ``s12 = (beta p_x - alpha p_y) / r^2``; then ``J_11 = p_y``, ``J_21 = -p_x``, ``J_12 = -a2 s12``,
-    ``J_22 = -a2 c12`` (SPEC section 2) and the phi row is ``[1, 1, 1]`` over ``theta1, theta2, theta4``.
+    ``cos theta2`` from (1.9), ``sin theta2 = elbow sqrt(1 - cos^2)``; with ``alpha = a1 c2 + a2`` and
+    ``beta = a1 s2`` (``alpha^2 + beta^2 = r^2``), ``c12 = (alpha p_x + beta p_y) / r^2`` and
+    ``s12 = (beta p_x - alpha p_y) / r^2``.
     """
     r2 = px * px + py * py
-    c2 = (r2 - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
-    c2 = min(1.0, max(-1.0, c2))
+    c2 = min(1.0, max(-1.0, elbow_cosine(px, py, a1, a2)))
     s2 = elbow * math.sqrt(1.0 - c2 * c2)
     if r2 > 1e-24:
         al = a1 * c2 + a2
         be = a1 * s2
-        c12 = (al * px + be * py) / r2
-        s12 = (be * px - al * py) / r2
-    else:  # folded arm on the joint-1 axis: theta1 is free, any direction will do
-        c12 = 1.0
-        s12 = 0.0
-    j11 = py
-    j12 = -a2 * s12
-    j21 = -px
-    j22 = -a2 * c12
-    return (j11 * j11 + j12 * j12, j21 * j21 + j22 * j22, j11 * j21 + j12 * j22, j11 + j12, j21 + j22)
+        return (be * px - al * py) / r2, (al * px + be * py) / r2
+    return 0.0, 1.0  # folded arm on the joint-1 axis: theta1 is free, any direction will do
+
+
+@kernel
+def _transpose_block(px, py, a1, a2, elbow, kd, sk):
+    """``S = K^1/2 J_3 J_3^T K^1/2`` as ``(s00, s01, s02, s11, s12, s22)``, with ``J_3`` the rows x, y, phi of
+    ``J_A`` (1.6) over ``theta1, theta2, theta4`` at the inverse-kinematics configuration of ``(px, py)``;
+    ``kd = (K_x, K_y, K_phi)`` and ``sk = (sqrt K_x, sqrt K_y, sqrt K_phi)`` (tuples, so that a call counts no
+    references)."""
+    s12, c12 = _ik_sc12(px, py, a1, a2, elbow)
+    j11, j12, j21, j22 = planar_jacobian_at(px, py, s12, c12, a2)
+    return (kd[0] * (j11 * j11 + j12 * j12), sk[0] * sk[1] * (j11 * j21 + j12 * j22), sk[0] * sk[2] * (j11 + j12),
+            kd[1] * (j21 * j21 + j22 * j22), sk[1] * sk[2] * (j21 + j22), 3.0 * kd[2])
 
 
 @kernel
@@ -423,16 +443,13 @@ def _transpose_rate_kernel(xr, K, a1, a2, elbow, out):
     """``out[k] = mu_max(J_A J_A^T K)`` at the inverse-kinematics configuration of every reference sample.
 
     The z row of ``J_A`` only involves ``d3`` and gives the eigenvalue ``K_z``; the x, y, phi rows give the
-    symmetric block ``S = K^1/2 J_3 J_3^T K^1/2`` (see :func:`_position_gram`), whose largest eigenvalue is
-    found in closed form. The caller has checked that every sample is reachable.
+    symmetric block ``S`` of :func:`_transpose_block`, whose largest eigenvalue is found in closed form. The
+    caller has checked that every sample is reachable.
     """
-    sk0 = math.sqrt(K[0])
-    sk1 = math.sqrt(K[1])
-    sk3 = math.sqrt(K[3])
+    kd = (K[0], K[1], K[3])
+    sk = (math.sqrt(K[0]), math.sqrt(K[1]), math.sqrt(K[3]))
     for k in range(xr.shape[0]):
-        gxx, gyy, gxy, gxp, gyp = _position_gram(xr[k, 0], xr[k, 1], a1, a2, elbow)
-        mu = _sym3_max_eig(K[0] * gxx, sk0 * sk1 * gxy, sk0 * sk3 * gxp, K[1] * gyy, sk1 * sk3 * gyp, 3.0 * K[3])
-        out[k] = max(mu, K[2])
+        out[k] = max(_sym3_max_eig(_transpose_block(xr[k, 0], xr[k, 1], a1, a2, elbow, kd, sk)), K[2])
 
 
 @kernel
@@ -444,17 +461,48 @@ def _transpose_check_kernel(xr, K, a1, a2, elbow, limit):
     """
     if K[2] >= limit:
         return 0
-    sk0 = math.sqrt(K[0])
-    sk1 = math.sqrt(K[1])
-    sk3 = math.sqrt(K[3])
+    kd = (K[0], K[1], K[3])
+    sk = (math.sqrt(K[0]), math.sqrt(K[1]), math.sqrt(K[3]))
     for k in range(xr.shape[0]):
-        gxx, gyy, gxy, gxp, gyp = _position_gram(xr[k, 0], xr[k, 1], a1, a2, elbow)
-        if K[0] * gxx + K[1] * gyy + 3.0 * K[3] < limit:
-            continue
-        if _sym3_max_eig(K[0] * gxx, sk0 * sk1 * gxy, sk0 * sk3 * gxp, K[1] * gyy, sk1 * sk3 * gyp,
-                         3.0 * K[3]) >= limit:
+        S = _transpose_block(xr[k, 0], xr[k, 1], a1, a2, elbow, kd, sk)
+        if S[0] + S[3] + S[5] >= limit and _sym3_max_eig(S) >= limit:
             return k
     return -1
+
+
+# --------------------------------------------------------------------------------------------------
+# packers: the one place each record of the compiled loops is built
+# --------------------------------------------------------------------------------------------------
+_NO_ROWS = np.empty((0, 4))
+
+
+def _reference(x_d, xd_d, xdd_d=None) -> Reference:
+    """The :class:`Reference` record (``xdd`` empty for a first-order run)."""
+    return Reference(x_d, xd_d, _NO_ROWS if xdd_d is None else xdd_d)
+
+
+def _first_order_law(dt, method, K, kept, lam2, w_thr, k0, objective, max_err) -> FirstOrderLaw:
+    """The :class:`FirstOrderLaw` record from checked settings (``method`` and ``objective`` by name)."""
+    return FirstOrderLaw(float(dt), _METHOD_CODE[method], np.ascontiguousarray(K, float),
+                         np.ascontiguousarray(kept, float), float(lam2), float(w_thr), float(k0),
+                         _OBJECTIVE_CODE[objective], float(max_err))
+
+
+def _second_order_law(dt, K_P, K_D, lam2, w_thr, max_err) -> SecondOrderLaw:
+    """The :class:`SecondOrderLaw` record from checked settings."""
+    return SecondOrderLaw(float(dt), np.ascontiguousarray(K_P, float), np.ascontiguousarray(K_D, float),
+                          float(lam2), float(w_thr), float(max_err))
+
+
+def _series(n: int, second_order: bool) -> Series:
+    """The :class:`Series` a run fills, as C-contiguous slices of one allocation: a block this large is backed
+    by huge pages where the system allows it, which saves thousands of page faults per run."""
+    count = 5 if second_order else 4
+    buf = np.empty(n * (4 * count + 1))
+    q, qd, *rest = [buf[4 * n * i:4 * n * (i + 1)].reshape(n, 4) for i in range(count)]
+    qdd = rest.pop(0) if second_order else _NO_ROWS
+    x, e = rest
+    return Series(q, qd, qdd, x, e, buf[4 * n * count:])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -629,35 +677,6 @@ def _clearly_reachable(x, p) -> bool:
     return _first_unclear_sample(x, r2_lo, r2_hi, p.d0, tol) < 0
 
 
-def _series(n: int, count: int):
-    """``count`` (n, 4) arrays and one (n,) array, C-contiguous slices of one allocation: a block this large
-    is backed by huge pages where the system allows it, which saves thousands of page faults per run."""
-    buf = np.empty(n * (4 * count + 1))
-    return [buf[4 * n * i:4 * n * (i + 1)].reshape(n, 4) for i in range(count)] + [buf[4 * n * count:]]
-
-
-def _diag_gain(value, name: str, default) -> np.ndarray:
-    """A diagonal gain given as a scalar, a (4,) vector or a diagonal (4, 4) matrix; checked positive."""
-    if value is None:
-        value = default
-    arr = np.asarray(value, dtype=float) if not isinstance(value, str) else None
-    if arr is None or arr.shape not in ((), (4,), (4, 4)):
-        raise ShapeError(f"{name} must be a number, a (4,) vector or a diagonal (4, 4) matrix, got {value!r}")
-    if arr.shape == (4, 4):
-        off = arr - np.diag(np.diag(arr))
-        if np.any(off != 0):
-            raise ScaraError(f"{name} must be diagonal (one gain per operational component); its largest "
-                             f"off-diagonal entry is {np.max(np.abs(off)):g}")
-        arr = np.diag(arr)
-    arr = np.broadcast_to(arr, (4,)).astype(float).copy()
-    if not np.all(np.isfinite(arr)):
-        raise ScaraError(f"{name} = {arr.tolist()} must be finite")
-    if np.any(arr <= 0):
-        i = int(np.argmin(arr))
-        raise ScaraError(f"{name} must be positive definite: its {COMPONENTS[i]} entry is {arr[i]:g} (must be > 0)")
-    return arr
-
-
 def _number(value):
     """``float(value)`` for a real scalar, else NaN (so that the caller's range check reports it)."""
     try:
@@ -686,13 +705,14 @@ def _max_error(max_error):
 
 
 def _elbow(traj) -> int:
-    """The trajectory's elbow if it carries one (``scara.trajectory`` does), else the SPEC's -1."""
+    """The trajectory's elbow if it carries one (``scara.trajectory`` does), else -1, the elbow of the
+    reference scenario (chapter 3)."""
     elbow = getattr(traj, "elbow", -1)
     return 1 if elbow == 1 else -1
 
 
 def start_configuration(traj, p: ScaraParams | None = None) -> np.ndarray:
-    """SPEC section 4 start: the inverse kinematics of the first reference sample with ``theta2 < 0``.
+    """The start of chapter 4: the inverse kinematics of the first reference sample with ``theta2 < 0``.
 
     (``theta4`` follows from the reference's ``phi``, which the scenario sets to ``theta1 + theta2``, so it is 0.)
     A trajectory planned with ``elbow=+1`` (attribute ``traj.elbow``) starts on that elbow instead.
@@ -707,9 +727,10 @@ def start_configuration(traj, p: ScaraParams | None = None) -> np.ndarray:
     return ikine(x0, p, elbow=_elbow(traj))
 
 
-def _start(traj, x0, q0, p):
+def _start(traj, q0, p):
+    """The start configuration: ``q0`` if given, else :func:`start_configuration`."""
     if q0 is None:
-        return ikine(x0, p, elbow=_elbow(traj))
+        return start_configuration(traj, p)
     return as_array(q0, "q0", (4,)).copy()
 
 
@@ -727,10 +748,10 @@ def _fail(info, t, result, what):
     status, k = int(info[0]), int(info[1])
     cause = _CAUSES[status]
     extra = ""
-    if status == 2:
+    if status == STATUS_ERROR_BOUND:
         i = int(np.argmax(np.abs(result.e[k]) * result.kept))
         extra = f" ({COMPONENTS[i]} error {result.e[k, i]:.4g})"
-    elif status == 3:
+    elif status == STATUS_SINGULAR:
         extra = f" (theta2 = {result.q[k, 1]:.6g} rad, manipulability {result.w[k]:.3g} m^2)"
     exc = UnstableError(f"{what} diverged at t = {t[k]:.4f} s (step {k}): {cause}{extra}")
     cut = slice(0, k + 1)
@@ -744,6 +765,115 @@ def _fail(info, t, result, what):
 
 
 # --------------------------------------------------------------------------------------------------
+# the steps of a run
+# --------------------------------------------------------------------------------------------------
+def _first_order_options(method, relaxed, k0, objective):
+    """Check the method, the relaxed component, the null-space gain and the objective of :func:`clik`;
+    return the kept-component mask (4,) and the null-space gain ``k0`` as a float."""
+    if method not in _METHOD_CODE:
+        raise ScaraError(f"method = {method!r} is unknown; choose one of {', '.join(METHODS)}")
+    if objective not in _OBJECTIVE_CODE:
+        raise ScaraError(f"objective = {objective!r} is unknown; choose one of {', '.join(OBJECTIVES)}")
+    kept = np.ones(4)
+    if method == "pseudoinverse":
+        r = "x" if relaxed is None else relaxed
+        idx = COMPONENTS.index(r) if r in COMPONENTS else (int(r) if isinstance(r, (int, np.integer))
+                                                           and not isinstance(r, bool) and 0 <= r < 4 else None)
+        if idx is None:
+            raise ScaraError(f"relaxed = {relaxed!r} is not an operational component; use one of "
+                             f"{', '.join(COMPONENTS)} (or 0..3)")
+        kept[idx] = 0.0
+        k0 = 1.0 if k0 is None else k0
+    elif relaxed is not None:
+        raise ScaraError(f"relaxed = {relaxed!r} only applies to method='pseudoinverse' (got {method!r})")
+    k0v = 0.0 if k0 is None else _number(k0)
+    if not math.isfinite(k0v) or k0v < 0:
+        raise ScaraError(f"k0 = {k0!r} (null-space gain) must be a finite number >= 0")
+    return kept, k0v
+
+
+def _reference_and_start(traj, need_acc, q0, p, kept, max_err):
+    """Check the trajectory and find the start configuration (refusing one whose initial error on a kept
+    component is above ``max_err``); return ``(t, x_d, xd_d, xdd_d or None, dt, q_start)``."""
+    t, x_d, xd_d, xdd_d, dt = _trajectory(traj, need_acc, p)
+    q_start = _start(traj, q0, p)
+    _check_initial_error(x_d[0], q_start, p, kept, max_err)
+    return t, x_d, xd_d, xdd_d, dt, q_start
+
+
+def _check_first_order_stability(traj, method, law, objective, x_d, q_start, p):
+    """Refuse gains past the discrete-time stability limits of the module notes: ``dt K < 2`` for the inverse
+    and pseudo-inverse (4.6), ``dt k0 |d^2 w_0 / d theta2^2| < 2`` for the null-space term, and (4.12) for the
+    transpose."""
+    K, kept, dt, k0v = law.K, law.keep, law.dt, law.k0
+    if method in ("inverse", "pseudoinverse"):
+        bad = (K * dt >= 2.0) & (kept > 0)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise UnstableError(
+                f"K[{COMPONENTS[i]}] = {K[i]:g} is past the discrete-time stability limit of the {method} CLIK: "
+                f"Euler's step gives e_(k+1) = (1 - dt K) e_k, stable only for K < 2 / dt = {2.0 / dt:g} 1/s")
+        if method == "pseudoinverse" and k0v > 0:
+            curv = 2.0 if objective == "sin2" else p.a1 * p.a2  # max |d^2 w_0 / d theta2^2|
+            k0_lim = 2.0 / (dt * curv)
+            if k0v >= k0_lim:
+                raise UnstableError(
+                    f"k0 = {k0v:g} is past the null-space stability limit: the gradient step on theta2 needs "
+                    f"dt k0 |d^2 w_0/d theta2^2| < 2, i.e. k0 < {k0_lim:g} for objective {objective!r}")
+        return
+    elbow = -1 if q_start[1] < 0 else 1
+    if _transpose_check_kernel(x_d, K, p.a1, p.a2, float(elbow), 2.0 / dt) >= 0:
+        st = transpose_stability(traj, K, p, elbow=elbow)
+        raise UnstableError(
+            f"K = [{', '.join(f'{k:.5g}' for k in K)}] is past the discrete-time stability limit of the transpose CLIK: along the "
+            f"reference the largest eigenvalue of J J^T K reaches {st.mu_max:.5g} 1/s (t = {st.t_worst:.3f} s), "
+            f"but Euler's step needs it below 2 / dt = {st.limit:g} 1/s; scale K by less than "
+            f"{st.scale_limit:.5g}")
+
+
+def _check_second_order_stability(K_P, K_D, dt):
+    """Refuse gains that put a discrete pole of (4.17) on or outside the unit circle (Jury's test)."""
+    a, b = dt * K_D, dt * dt * K_P
+    bad = ~((b < a) & (2 * a - b < 4))
+    if bad.any():
+        i = int(np.argmax(bad))
+        rho = max(abs(z) for z in np.roots([1.0, -(2.0 - a[i]), 1.0 - a[i] + b[i]]))
+        raise UnstableError(
+            f"K_P[{COMPONENTS[i]}] = {K_P[i]:g}, K_D[{COMPONENTS[i]}] = {K_D[i]:g} are past the discrete-time "
+            f"stability limit of the second-order CLIK: Euler's step puts a pole at |z| = {rho:.4g} >= 1; it "
+            f"needs dt K_P < K_D < 2 / dt + dt K_P / 2 (here {b[i] / dt:g} < {K_D[i]:g} < {(4 + b[i]) / (2 * dt):g} fails)")
+
+
+def _start_velocity(q_start, xd0, qd0, p):
+    """``qd0`` if given, else ``J_A^-1 xd_d(0)`` at the start configuration (refused if singular)."""
+    if qd0 is not None:
+        return as_array(qd0, "qd0", (4,)).copy()
+    J = np.empty((4, 4))
+    jacobian_kernel(q_start, p.a1, p.a2, J)
+    if abs(np.linalg.det(J)) <= _SINGULAR_TOL:
+        raise UnstableError(f"the start configuration q0 = {q_start.tolist()} is singular; give qd0 explicitly")
+    return np.linalg.solve(J, xd0)
+
+
+def _run_loop(loop, ref, law, p, out):
+    """Run a compiled loop; return its ``info = [status, step]`` and the seconds it took."""
+    info = np.zeros(2, np.int64)
+    t0 = time.perf_counter()
+    loop(ref, law, geometry(p), out, info)
+    return info, time.perf_counter() - t0
+
+
+def _build_result(t, out, x_d, method, kept, dt, gains, info, run_time, what) -> ClikResult:
+    """The :class:`ClikResult` of a run; raises the :class:`UnstableError` of :func:`_fail` if it stopped."""
+    qdd = out.qdd if method == "second_order" else None
+    res = ClikResult(t, out.q, out.qd, qdd, out.x, out.e, out.w, x_d, method, kept.astype(bool), dt, gains,
+                     run_time)
+    if info[0] != STATUS_DONE:
+        raise _fail(info, t, res, what)
+    return res
+
+
+# --------------------------------------------------------------------------------------------------
 # public functions
 # --------------------------------------------------------------------------------------------------
 def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int | None = None) -> TransposeStability:
@@ -753,7 +883,8 @@ def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int |
     diagonal positive, ``J_A J_A^T K`` has real positive eigenvalues ``mu_i(q)`` (it is similar to
     ``K^1/2 J_A J_A^T K^1/2``), so the step is stable iff ``dt mu_max(q) < 2`` at every configuration met.
     The configurations are those of the reference (inverse kinematics with the given ``elbow``, by default the
-    trajectory's own, ``traj.elbow``, or -1 as in SPEC section 4). ``K`` as in :func:`clik` (default the seed).
+    trajectory's own, ``traj.elbow``, or -1 as in the reference scenario of chapter 3). ``K`` as in :func:`clik`
+    (default the seed).
 
     Returns a :class:`TransposeStability`; raises :class:`UnreachableError` for an unreachable reference.
 
@@ -762,7 +893,7 @@ def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int |
     """
     p = _params(p)
     t, x, _, _, dt = _trajectory(traj, False, p)
-    K = _diag_gain(K, "K", SEED_K)
+    K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     mu = np.empty(len(t))
     elbow = _elbow(traj) if elbow is None else elbow
     if isinstance(elbow, bool) or elbow not in (1, -1):
@@ -776,7 +907,7 @@ def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int |
 def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | None = None,
          damping: float = 0.0, damping_threshold: float | None = None, relaxed=None, k0: float | None = None,
          objective: str = "sin2", max_error: float = 0.1, check_stability: bool = True) -> ClikResult:
-    """First-order closed-loop inverse kinematics along ``traj`` with Euler's rule (SPEC sections 4-5).
+    """First-order closed-loop inverse kinematics along ``traj`` with Euler's rule (chapter 4).
 
     Parameters
     ----------
@@ -788,7 +919,7 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
     K : number, (4,) or diagonal (4, 4), optional
         Positive gains on ``e = x_d - x_e``; default the seed ``diag(400, 400, 400, 100)``.
     q0 : (4,), optional
-        Start configuration; default the SPEC's (inverse kinematics of ``x_d(0)`` with ``theta2 < 0``).
+        Start configuration; default :func:`start_configuration` (inverse kinematics of ``x_d(0)`` with ``theta2 < 0``).
         Any other start leaves an initial error that the loop removes.
     p : ScaraParams, optional
     damping : float, default 0
@@ -839,72 +970,21 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
     True
     """
     p = _params(p)
-    if method not in _METHOD_CODE:
-        raise ScaraError(f"method = {method!r} is unknown; choose one of {', '.join(METHODS)}")
-    if objective not in _OBJECTIVE_CODE:
-        raise ScaraError(f"objective = {objective!r} is unknown; choose one of {', '.join(OBJECTIVES)}")
-    kept = np.ones(4)
-    if method == "pseudoinverse":
-        r = "x" if relaxed is None else relaxed
-        idx = COMPONENTS.index(r) if r in COMPONENTS else (int(r) if isinstance(r, (int, np.integer))
-                                                           and not isinstance(r, bool) and 0 <= r < 4 else None)
-        if idx is None:
-            raise ScaraError(f"relaxed = {relaxed!r} is not an operational component; use one of "
-                             f"{', '.join(COMPONENTS)} (or 0..3)")
-        kept[idx] = 0.0
-        k0 = 1.0 if k0 is None else k0
-    elif relaxed is not None:
-        raise ScaraError(f"relaxed = {relaxed!r} only applies to method='pseudoinverse' (got {method!r})")
-    k0v = 0.0 if k0 is None else _number(k0)
-    if not math.isfinite(k0v) or k0v < 0:
-        raise ScaraError(f"k0 = {k0!r} (null-space gain) must be a finite number >= 0")
-    K = _diag_gain(K, "K", SEED_K)
+    kept, k0v = _first_order_options(method, relaxed, k0, objective)
+    K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     lam2, w_thr = _damping(damping, damping_threshold)
     max_err = _max_error(max_error)
-    t, x_d, xd_d, _, dt = _trajectory(traj, False, p)
-    q_start = _start(traj, x_d[0], q0, p)
-    _check_initial_error(x_d[0], q_start, p, kept, max_err)
-
+    t, x_d, xd_d, _, dt, q_start = _reference_and_start(traj, False, q0, p, kept, max_err)
+    law = _first_order_law(dt, method, K, kept, lam2, w_thr, k0v, objective, max_err)
     if check_stability:
-        if method in ("inverse", "pseudoinverse"):
-            bad = (K * dt >= 2.0) & (kept > 0)
-            if bad.any():
-                i = int(np.argmax(bad))
-                raise UnstableError(
-                    f"K[{COMPONENTS[i]}] = {K[i]:g} is past the discrete-time stability limit of the {method} CLIK: "
-                    f"Euler's step gives e_(k+1) = (1 - dt K) e_k, stable only for K < 2 / dt = {2.0 / dt:g} 1/s")
-            if method == "pseudoinverse" and k0v > 0:
-                curv = 2.0 if objective == "sin2" else p.a1 * p.a2  # max |d^2 w_0 / d theta2^2|
-                k0_lim = 2.0 / (dt * curv)
-                if k0v >= k0_lim:
-                    raise UnstableError(
-                        f"k0 = {k0v:g} is past the null-space stability limit: the gradient step on theta2 needs "
-                        f"dt k0 |d^2 w_0/d theta2^2| < 2, i.e. k0 < {k0_lim:g} for objective {objective!r}")
-        else:
-            elbow = -1 if q_start[1] < 0 else 1
-            if _transpose_check_kernel(x_d, K, p.a1, p.a2, float(elbow), 2.0 / dt) >= 0:
-                st = transpose_stability(traj, K, p, elbow=elbow)
-                raise UnstableError(
-                    f"K = [{', '.join(f'{k:.5g}' for k in K)}] is past the discrete-time stability limit of the transpose CLIK: along the "
-                    f"reference the largest eigenvalue of J J^T K reaches {st.mu_max:.5g} 1/s (t = {st.t_worst:.3f} s), "
-                    f"but Euler's step needs it below 2 / dt = {st.limit:g} 1/s; scale K by less than "
-                    f"{st.scale_limit:.5g}")
-
-    n = len(t)
-    q, qd, x, e, w = _series(n, 4)
-    q[0] = q_start
-    info = np.zeros(2, np.int64)
-    t0 = time.perf_counter()
-    _clik1_kernel(x_d, xd_d, dt, _METHOD_CODE[method], K, kept, lam2, w_thr, k0v, _OBJECTIVE_CODE[objective],
-                  p.a1, p.a2, p.d0, max_err, q, qd, x, e, w, info)
-    run_time = time.perf_counter() - t0
+        _check_first_order_stability(traj, method, law, objective, x_d, q_start, p)
+    out = _series(len(t), second_order=False)
+    out.q[0] = q_start
+    info, run_time = _run_loop(_clik1_kernel, _reference(x_d, xd_d), law, p, out)
     gains = {"K": K, "damping": math.sqrt(lam2), "damping_threshold": w_thr or None}
     if method == "pseudoinverse":
         gains.update(k0=k0v, objective=objective, relaxed=COMPONENTS[int(np.argmin(kept))])
-    res = ClikResult(t, q, qd, None, x, e, w, x_d, method, kept.astype(bool), dt, gains, run_time)
-    if info[0] != 0:
-        raise _fail(info, t, res, f"the {method} CLIK")
-    return res
+    return _build_result(t, out, x_d, method, kept, dt, gains, info, run_time, f"the {method} CLIK")
 
 
 def second_order_gains(K=SEED_K):
@@ -914,7 +994,7 @@ def second_order_gains(K=SEED_K):
     which with this choice is ``(z - (1 - K dt))^2``: critically damped in discrete time, at the same pole as
     the first-order inverse CLIK with gain ``K``.
     """
-    K = _diag_gain(K, "K", SEED_K)
+    K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     return K**2, 2.0 * K
 
 
@@ -936,7 +1016,7 @@ def clik2(traj, K_P=None, K_D=None, *, q0=None, qd0=None, p: ScaraParams | None 
         a constant reference acceleration ``A`` leaves a lag ``dt A / omega`` (``omega = K_D / 2``): about
         2.5 micrometres per m/s^2 with these gains.
     q0, qd0 : (4,), optional
-        Start; default the SPEC configuration and ``qd0 = J_A^-1 xd_d(0)``.
+        Start; default :func:`start_configuration` and ``qd0 = J_A^-1 xd_d(0)``.
     p, damping, damping_threshold, max_error, check_stability : see :func:`clik`
 
     Returns
@@ -951,46 +1031,22 @@ def clik2(traj, K_P=None, K_D=None, *, q0=None, qd0=None, p: ScaraParams | None 
     """
     p = _params(p)
     KP0, KD0 = second_order_gains()
-    K_P = _diag_gain(K_P, "K_P", KP0)
-    K_D = _diag_gain(K_D, "K_D", KD0)
+    K_P = gain_vector(K_P, "K_P", default=KP0, labels=COMPONENTS)
+    K_D = gain_vector(K_D, "K_D", default=KD0, labels=COMPONENTS)
     lam2, w_thr = _damping(damping, damping_threshold)
     max_err = _max_error(max_error)
-    t, x_d, xd_d, xdd_d, dt = _trajectory(traj, True, p)
-    q_start = _start(traj, x_d[0], q0, p)
     kept = np.ones(4)
-    _check_initial_error(x_d[0], q_start, p, kept, max_err)
-    if qd0 is None:
-        J = np.empty((4, 4))
-        jacobian_kernel(q_start, p.a1, p.a2, J)
-        if abs(np.linalg.det(J)) <= _SINGULAR_TOL:
-            raise UnstableError(f"the start configuration q0 = {q_start.tolist()} is singular; give qd0 explicitly")
-        qd_start = np.linalg.solve(J, xd_d[0])
-    else:
-        qd_start = as_array(qd0, "qd0", (4,)).copy()
+    t, x_d, xd_d, xdd_d, dt, q_start = _reference_and_start(traj, True, q0, p, kept, max_err)
+    qd_start = _start_velocity(q_start, xd_d[0], qd0, p)
     if check_stability:
-        a, b = dt * K_D, dt * dt * K_P
-        bad = ~((b < a) & (2 * a - b < 4))
-        if bad.any():
-            i = int(np.argmax(bad))
-            rho = max(abs(z) for z in np.roots([1.0, -(2.0 - a[i]), 1.0 - a[i] + b[i]]))
-            raise UnstableError(
-                f"K_P[{COMPONENTS[i]}] = {K_P[i]:g}, K_D[{COMPONENTS[i]}] = {K_D[i]:g} are past the discrete-time "
-                f"stability limit of the second-order CLIK: Euler's step puts a pole at |z| = {rho:.4g} >= 1; it "
-                f"needs dt K_P < K_D < 2 / dt + dt K_P / 2 (here {b[i] / dt:g} < {K_D[i]:g} < {(4 + b[i]) / (2 * dt):g} fails)")
-
-    n = len(t)
-    q, qd, qdd, x, e, w = _series(n, 5)
-    q[0] = q_start
-    qd[0] = qd_start
-    info = np.zeros(2, np.int64)
-    t0 = time.perf_counter()
-    _clik2_kernel(x_d, xd_d, xdd_d, dt, K_P, K_D, lam2, w_thr, p.a1, p.a2, p.d0, max_err, q, qd, qdd, x, e, w, info)
-    run_time = time.perf_counter() - t0
+        _check_second_order_stability(K_P, K_D, dt)
+    out = _series(len(t), second_order=True)
+    out.q[0] = q_start
+    out.qd[0] = qd_start
+    law = _second_order_law(dt, K_P, K_D, lam2, w_thr, max_err)
+    info, run_time = _run_loop(_clik2_kernel, _reference(x_d, xd_d, xdd_d), law, p, out)
     gains = {"K_P": K_P, "K_D": K_D, "damping": math.sqrt(lam2), "damping_threshold": w_thr or None}
-    res = ClikResult(t, q, qd, qdd, x, e, w, x_d, "second_order", kept.astype(bool), dt, gains, run_time)
-    if info[0] != 0:
-        raise _fail(info, t, res, "the second-order CLIK")
-    return res
+    return _build_result(t, out, x_d, "second_order", kept, dt, gains, info, run_time, "the second-order CLIK")
 
 
 def dexterity(q, objective: str = "sin2", p: ScaraParams | None = None):

@@ -1,13 +1,17 @@
-"""Kinematics of the SCARA arm (SPEC section 2): DH table, link frames, ``T_e^b``, ``x_e``, ``J_A``,
+"""Kinematics of the SCARA arm (chapter 1): DH table, link frames, ``T_e^b``, ``x_e``, ``J_A``,
 ``Jdot_A``, closed-form inverse kinematics and reachability.
 
-The scalar kernels (``*_kernel``) are compiled by the project decorator and write into arrays passed by
-the caller; the later chapters' compiled loops (CLIK, simulation) call them directly. The public
-functions check their inputs and wrap the kernels.
+Each formula of the planar part is written once, as a small compiled building block taking and returning
+scalars (``planar_trig``, ``planar_position``, ``planar_jacobian_at``, ``planar_jacobian``, ``planar_det``,
+``planar_jacobian_dot``, ``elbow_cosine``), which the compiler inlines into every loop that calls it. The array kernels
+(``*_kernel``) write into arrays passed by the caller; the later chapters' compiled loops (CLIK, simulation)
+call the building blocks or these kernels directly, with the arm's lengths as a :class:`Geometry` record or
+as numbers. The public functions check their inputs and wrap the kernels.
 """
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 
@@ -31,6 +35,15 @@ __all__ = [
     "jacobian_kernel",
     "jacobian_dot_kernel",
     "ikine_kernel",
+    "Geometry",
+    "geometry",
+    "planar_trig",
+    "planar_position",
+    "planar_jacobian",
+    "planar_jacobian_at",
+    "planar_det",
+    "planar_jacobian_dot",
+    "elbow_cosine",
 ]
 
 _DEFAULT = ScaraParams()
@@ -45,38 +58,105 @@ def _params(p):
 
 
 def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
-    """``A_0^b`` (SPEC section 2): frame 0 hangs at height ``d0`` with its z axis pointing down."""
+    """``A_0^b`` (1.1): frame 0 hangs at height ``d0`` with its z axis pointing down."""
     p = _params(p)
     return np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, p.d0], [0, 0, 0, 1.0]])
 
 
 # --------------------------------------------------------------------------------------------------
-# compiled scalar kernels
+# the arm's geometry as one record for compiled code
+# --------------------------------------------------------------------------------------------------
+#: The lengths the kinematics needs (m), as compiled loops read them: ``a1``, ``a2`` and the height ``d0``.
+Geometry = namedtuple("Geometry", "a1 a2 d0")
+
+
+def geometry(p: ScaraParams | None = None) -> Geometry:
+    """The :class:`Geometry` record of ``p`` (default the robot of the book's introduction)."""
+    p = _params(p)
+    return Geometry(float(p.a1), float(p.a2), float(p.d0))
+
+
+# --------------------------------------------------------------------------------------------------
+# planar building blocks: scalars in, tuples out, inlined by the compiler into every loop that calls them
+# --------------------------------------------------------------------------------------------------
+@kernel
+def planar_trig(t1, t2):
+    """``(s1, c1, s12, c12)``: the sines and cosines of ``theta1`` and ``theta1 + theta2``, the step's only
+    trigonometric calls."""
+    t12 = t1 + t2
+    return math.sin(t1), math.cos(t1), math.sin(t12), math.cos(t12)
+
+
+@kernel
+def planar_position(sc, a1, a2):
+    """``(p_x, p_y) = (a1 c1 + a2 c12, -(a1 s1 + a2 s12))`` of the direct kinematics (1.5), from
+    ``sc = planar_trig(theta1, theta2)``."""
+    s1, c1, s12, c12 = sc
+    return a1 * c1 + a2 * c12, -(a1 * s1 + a2 * s12)
+
+
+@kernel
+def planar_jacobian_at(px, py, s12, c12, a2):
+    """The four non-constant entries ``(J_11, J_12, J_21, J_22)`` of the analytic Jacobian (1.6) written with
+    the position (1.5): ``J_11 = p_y``, ``J_12 = -a2 s12``, ``J_21 = -p_x``, ``J_22 = -a2 c12``. The other rows
+    are constant: z is ``[0, 0, -1, 0]``, phi is ``[1, 1, 0, 1]``."""
+    return py, -a2 * s12, -px, -a2 * c12
+
+
+@kernel
+def planar_jacobian(sc, a1, a2):
+    """The entries ``(J_11, J_12, J_21, J_22)`` of (1.6) from ``sc = planar_trig(theta1, theta2)``."""
+    px, py = planar_position(sc, a1, a2)
+    return planar_jacobian_at(px, py, sc[2], sc[3], a2)
+
+
+@kernel
+def planar_det(J):
+    """The determinant ``J_11 J_22 - J_12 J_21 = -a1 a2 sin theta2`` of the horizontal block of (1.6), from the
+    entries ``J = (J_11, J_12, J_21, J_22)``; ``det J_A`` (1.7) is its opposite."""
+    return J[0] * J[3] - J[1] * J[2]
+
+
+@kernel
+def planar_jacobian_dot(sc, a1, a2, w1, w12):
+    """The four non-constant entries of ``Jdot_A`` (chapter 4), differentiating (1.6) entry by entry with
+    ``w1 = qd1`` and ``w12 = qd1 + qd2``: ``d/dt J11 = -(a1 c1 w1 + a2 c12 w12)``, ``d/dt J12 = -a2 c12 w12``,
+    ``d/dt J21 = a1 s1 w1 + a2 s12 w12``, ``d/dt J22 = a2 s12 w12``; every other entry is constant."""
+    s1, c1, s12, c12 = sc
+    return -(a1 * c1 * w1 + a2 * c12 * w12), -a2 * c12 * w12, a1 * s1 * w1 + a2 * s12 * w12, a2 * s12 * w12
+
+
+@kernel
+def elbow_cosine(px, py, a1, a2):
+    """``cos theta2 = (p_x^2 + p_y^2 - a1^2 - a2^2) / (2 a1 a2)`` of the inverse kinematics (1.9)
+    (numbers or arrays)."""
+    return (px * px + py * py - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
+
+
+# --------------------------------------------------------------------------------------------------
+# compiled kernels on arrays
 # --------------------------------------------------------------------------------------------------
 @kernel
 def pose_kernel(q, a1, a2, d0, out):
-    """``x_e = k(q) = [p_x, p_y, p_z, phi]`` (SPEC section 2) written into ``out`` (4,)."""
-    t12 = q[0] + q[1]
-    out[0] = a1 * math.cos(q[0]) + a2 * math.cos(t12)
-    out[1] = -(a1 * math.sin(q[0]) + a2 * math.sin(t12))
+    """``x_e = k(q) = [p_x, p_y, p_z, phi]`` (1.5) written into ``out`` (4,)."""
+    out[0], out[1] = planar_position(planar_trig(q[0], q[1]), a1, a2)
     out[2] = d0 - q[2]
-    out[3] = t12 + q[3]
+    out[3] = q[0] + q[1] + q[3]
+
+
+@kernel
+def _zero(out):
+    """Set every entry of ``out`` (4, 4) to 0."""
+    for i in range(4):
+        for j in range(4):
+            out[i, j] = 0.0
 
 
 @kernel
 def jacobian_kernel(q, a1, a2, out):
-    """Analytic Jacobian ``J_A = dx_e/dq`` (SPEC section 2) written into ``out`` (4, 4)."""
-    s1 = math.sin(q[0])
-    c1 = math.cos(q[0])
-    s12 = math.sin(q[0] + q[1])
-    c12 = math.cos(q[0] + q[1])
-    for i in range(4):
-        for j in range(4):
-            out[i, j] = 0.0
-    out[0, 0] = -(a1 * s1 + a2 * s12)
-    out[0, 1] = -a2 * s12
-    out[1, 0] = -(a1 * c1 + a2 * c12)
-    out[1, 1] = -a2 * c12
+    """Analytic Jacobian ``J_A = dx_e/dq`` (1.6) written into ``out`` (4, 4)."""
+    _zero(out)
+    out[0, 0], out[0, 1], out[1, 0], out[1, 1] = planar_jacobian(planar_trig(q[0], q[1]), a1, a2)
     out[2, 2] = -1.0
     out[3, 0] = 1.0
     out[3, 1] = 1.0
@@ -85,48 +165,39 @@ def jacobian_kernel(q, a1, a2, out):
 
 @kernel
 def jacobian_dot_kernel(q, qd, a1, a2, out):
-    """Time derivative ``Jdot_A(q, qd)`` of the analytic Jacobian, written into ``out`` (4, 4).
+    """Time derivative ``Jdot_A(q, qd)`` of the analytic Jacobian (see :func:`planar_jacobian_dot`), written
+    into ``out`` (4, 4)."""
+    _zero(out)
+    out[0, 0], out[0, 1], out[1, 0], out[1, 1] = planar_jacobian_dot(planar_trig(q[0], q[1]), a1, a2, qd[0],
+                                                                      qd[0] + qd[1])
 
-    Differentiating SPEC section 2 entry by entry, with ``w1 = qd1`` and ``w12 = qd1 + qd2``:
-    ``d/dt J11 = -(a1 c1 w1 + a2 c12 w12)``, ``d/dt J12 = -a2 c12 w12``,
-    ``d/dt J21 = a1 s1 w1 + a2 s12 w12``, ``d/dt J22 = a2 s12 w12``; every other entry is constant.
-    """
-    s1 = math.sin(q[0])
-    c1 = math.cos(q[0])
-    s12 = math.sin(q[0] + q[1])
-    c12 = math.cos(q[0] + q[1])
-    w1 = qd[0]
-    w12 = qd[0] + qd[1]
-    for i in range(4):
-        for j in range(4):
-            out[i, j] = 0.0
-    out[0, 0] = -(a1 * c1 * w1 + a2 * c12 * w12)
-    out[0, 1] = -a2 * c12 * w12
-    out[1, 0] = a1 * s1 * w1 + a2 * s12 * w12
-    out[1, 1] = a2 * s12 * w12
+
+#: :func:`ikine_kernel`'s return codes
+IK_OK = 0
+IK_OUTSIDE_ANNULUS = 1
+IK_OUTSIDE_STROKE = 2
 
 
 @kernel
 def ikine_kernel(x, a1, a2, d0, elbow, out):
-    """Closed-form inverse kinematics (SPEC section 2) written into ``out`` (4,).
+    """Closed-form inverse kinematics (1.8)-(1.10) written into ``out`` (4,).
 
     With ``y' = -p_y`` the horizontal problem is the planar two-link arm:
-    ``c2 = (p_x^2 + y'^2 - a1^2 - a2^2) / (2 a1 a2)``, ``s2 = elbow sqrt(1 - c2^2)``,
+    ``c2 = (p_x^2 + y'^2 - a1^2 - a2^2) / (2 a1 a2)`` (:func:`elbow_cosine`), ``s2 = elbow sqrt(1 - c2^2)``,
     ``theta2 = atan2(s2, c2)``, ``theta1 = atan2(y', p_x) - atan2(a2 s2, a1 + a2 c2)``,
     ``d3 = d0 - p_z``, ``theta4 = phi - theta1 - theta2``.
-    Returns 0 on success, 1 when the point is outside the annulus, 2 when ``d3`` is outside ``[0, d0]``.
-    The caller checks the code; ``out`` is left unchanged on failure.
+    Returns :data:`IK_OK`, :data:`IK_OUTSIDE_ANNULUS` or :data:`IK_OUTSIDE_STROKE` (``d3`` outside
+    ``[0, d0]``). The caller checks the code; ``out`` is left unchanged on failure.
     """
     px = x[0]
     py = -x[1]
-    r2 = px * px + py * py
-    c2 = (r2 - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
+    c2 = elbow_cosine(px, py, a1, a2)
     tol = 1e-12
     if c2 > 1.0 + tol or c2 < -1.0 - tol:
-        return 1
+        return IK_OUTSIDE_ANNULUS
     d3 = d0 - x[2]
     if d3 < -tol or d3 > d0 + tol:
-        return 2
+        return IK_OUTSIDE_STROKE
     if c2 > 1.0:
         c2 = 1.0
     elif c2 < -1.0:
@@ -142,14 +213,21 @@ def ikine_kernel(x, a1, a2, d0, elbow, out):
     out[1] = t2
     out[2] = d3
     out[3] = x[3] - t1 - t2
-    return 0
+    return IK_OK
+
+
+@kernel
+def pose_batch_kernel(q, a1, a2, d0, out):
+    """:func:`pose_kernel` for every row of ``q`` (N, 4), written into ``out`` (N, 4)."""
+    for k in range(q.shape[0]):
+        pose_kernel(q[k], a1, a2, d0, out[k])
 
 
 # --------------------------------------------------------------------------------------------------
 # public functions
 # --------------------------------------------------------------------------------------------------
 def dh_table(q=None, p: ScaraParams | None = None) -> np.ndarray:
-    """The DH table (SPEC section 2) as rows ``(a_i, alpha_i, d_i, theta_i)``, shape (4, 4).
+    """The DH table (1.2) as rows ``(a_i, alpha_i, d_i, theta_i)``, shape (4, 4).
 
     With ``q`` the joint variables are filled in; without it they are zero.
     """
@@ -189,12 +267,12 @@ def link_frames(q, p: ScaraParams | None = None) -> np.ndarray:
 
 
 def pose(q, p: ScaraParams | None = None) -> np.ndarray:
-    """Operational vector ``x_e = [p_x, p_y, p_z, phi]`` (SPEC section 2).
+    """Operational vector ``x_e = [p_x, p_y, p_z, phi]`` (1.5).
 
     ``q`` has shape (4,) or (N, 4); the result has the same shape. Units m and rad.
 
     >>> pose([0.0, 0.0, 0.5, 0.0])
-    array([1. , -0. , 0.5, 0. ])
+    array([ 1. , -0. ,  0.5,  0. ])
     """
     p = _params(p)
     q = as_array(q, "q", (4,), allow_batch=True)
@@ -202,17 +280,13 @@ def pose(q, p: ScaraParams | None = None) -> np.ndarray:
         out = np.empty(4)
         pose_kernel(q, p.a1, p.a2, p.d0, out)
         return out
-    t12 = q[:, 0] + q[:, 1]
-    return np.column_stack([
-        p.a1 * np.cos(q[:, 0]) + p.a2 * np.cos(t12),
-        -(p.a1 * np.sin(q[:, 0]) + p.a2 * np.sin(t12)),
-        p.d0 - q[:, 2],
-        t12 + q[:, 3],
-    ])
+    out = np.empty_like(q)
+    pose_batch_kernel(q, p.a1, p.a2, p.d0, out)
+    return out
 
 
 def fkine(q, p: ScaraParams | None = None) -> np.ndarray:
-    """Direct kinematics ``T_e^b(q)`` (SPEC section 2) in closed form, shape (4, 4).
+    """Direct kinematics ``T_e^b(q)`` (1.4) in closed form, shape (4, 4).
 
     ``R_e^b = [[c, -s, 0], [-s, -c, 0], [0, 0, -1]]`` with ``c, s = cos phi, sin phi`` and the position of
     :func:`pose`.
@@ -223,7 +297,7 @@ def fkine(q, p: ScaraParams | None = None) -> np.ndarray:
 
 
 def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
-    """Analytic Jacobian ``J_A(q) = dx_e/dq`` (SPEC section 2), shape (4, 4).
+    """Analytic Jacobian ``J_A(q) = dx_e/dq`` (1.6), shape (4, 4).
 
     ``det J_A = a1 a2 sin(theta2)``: singular with the arm stretched or folded.
     """
@@ -246,7 +320,7 @@ def jacobian_dot(q, qd, p: ScaraParams | None = None) -> np.ndarray:
 
 def _unreachable_message(x, code, p, label="point"):
     r = math.hypot(x[0], x[1])
-    if code == 1:
+    if code == IK_OUTSIDE_ANNULUS:
         return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: its distance from the "
                 f"joint-1 axis r = {r:.10g} m is outside the annulus |a1 - a2| = {p.r_min:g} m <= r <= "
                 f"a1 + a2 = {p.r_max:g} m")
@@ -260,13 +334,13 @@ def ikine_batch_kernel(xs, a1, a2, d0, elbow, out):
     """:func:`ikine_kernel` for every row of ``xs`` (N, 4), written into ``out`` (N, 4), in one compiled loop.
     Returns -1 when every row is reachable, else the index of the first row that is not."""
     for k in range(xs.shape[0]):
-        if ikine_kernel(xs[k], a1, a2, d0, elbow, out[k]) != 0:
+        if ikine_kernel(xs[k], a1, a2, d0, elbow, out[k]) != IK_OK:
             return k
     return -1
 
 
 def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
-    """Closed-form inverse kinematics: the joint vector ``q`` with ``pose(q) == x`` (SPEC section 2).
+    """Closed-form inverse kinematics: the joint vector ``q`` with ``pose(q) == x`` (1.8)-(1.10).
 
     Parameters
     ----------
@@ -322,5 +396,5 @@ def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -
     if is_reachable(x, p):
         return
     r = math.hypot(x[0], x[1])
-    code = 1 if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12) else 2
+    code = IK_OUTSIDE_ANNULUS if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12) else IK_OUTSIDE_STROKE
     raise UnreachableError(_unreachable_message(x, code, p, label))

@@ -1,4 +1,4 @@
-"""Manipulability (SPEC section 2): the measure ``w(q)``, the velocity and force ellipsoids, workspace maps."""
+"""Manipulability (chapter 2): the measure ``w(q)``, the velocity and force ellipsoids, workspace maps."""
 from __future__ import annotations
 
 import math
@@ -8,7 +8,7 @@ import numpy as np
 
 from ._compile import kernel
 from .errors import ScaraError, as_array
-from .kinematics import _params, jacobian, pose
+from .kinematics import _params, elbow_cosine, jacobian, pose
 from .params import ScaraParams
 
 __all__ = [
@@ -24,12 +24,12 @@ __all__ = [
 
 @kernel
 def manipulability_kernel(q, a1, a2):
-    """``w(q) = sqrt(det(J_A J_A^T)) = |det J_A| = a1 a2 |sin theta2|`` (SPEC section 2)."""
+    """``w(q) = sqrt(det(J_A J_A^T)) = |det J_A| = a1 a2 |sin theta2|`` (2.4)."""
     return a1 * a2 * abs(math.sin(q[1]))
 
 
 def manipulability(q, p: ScaraParams | None = None):
-    """Yoshikawa's manipulability ``w(q) = sqrt(det(J_A J_A^T)) = a1 a2 |sin theta2|`` (SPEC section 2).
+    """Yoshikawa's manipulability ``w(q) = sqrt(det(J_A J_A^T)) = a1 a2 |sin theta2|`` (2.3), (2.4).
 
     ``q`` of shape (4,) gives a float, ``(N, 4)`` an array (N,).
 
@@ -124,7 +124,7 @@ def workspace_map(p: ScaraParams | None = None, n: int = 201):
     """``w`` over a square grid of end-effector positions ``(x, y)`` covering the workspace.
 
     ``w`` depends on the distance ``r`` to the joint-1 axis only: ``cos theta2 = (r^2 - a1^2 - a2^2) / (2 a1 a2)``
-    and ``w = a1 a2 sin|theta2|``, the same for both elbows. Returns ``(xs, ys, W)`` with ``W[i, j]`` at
+    (1.9) and ``w = a1 a2 sin|theta2|`` (2.7), the same for both elbows. Returns ``(xs, ys, W)`` with ``W[i, j]`` at
     ``(xs[j], ys[i])`` and NaN where the point is outside the annulus (no configuration reaches it).
     """
     p = _params(p)
@@ -132,8 +132,7 @@ def workspace_map(p: ScaraParams | None = None, n: int = 201):
         raise ScaraError(f"n = {n} grid points per side is too few (need >= 3)")
     xs = np.linspace(-p.r_max, p.r_max, int(n))
     X, Y = np.meshgrid(xs, xs)
-    r2 = X**2 + Y**2
-    c2 = (r2 - p.a1**2 - p.a2**2) / (2 * p.a1 * p.a2)
+    c2 = elbow_cosine(X, Y, p.a1, p.a2)
     inside = np.abs(c2) <= 1.0 + 1e-12  # points on the singular circles count as reachable
     W = np.full(X.shape, np.nan)
     W[inside] = p.a1 * p.a2 * np.sqrt(np.clip(1.0 - c2[inside] ** 2, 0.0, None))

@@ -1,8 +1,22 @@
-"""Shared test settings: a hypothesis profile with no deadline (the first call of a compiled kernel
-compiles it) and a fixed seed of examples per test, so CI runs are repeatable in time."""
+"""Shared test settings and fixtures of the package's tests (tests/*.py; tests/book and tests/agreement inherit the
+settings).
+
+- A hypothesis profile with no deadline (the first call of a compiled kernel compiles it) and a fixed seed of
+  examples per test, so CI runs are repeatable in time.
+- The chapter 3 reference trajectory and the chapter 6 runs, computed once per session (session-scoped fixtures)
+  and shared by test_trajectory_*.py and test_control_*.py.
+- At the end of the run, the largest difference met by each independent check (``_largest.record``).
+
+Helper modules (``_largest``, ``_trajectory_shared``, ``_control_shared`` here; ``_figure_rules``,
+``jupyterlab_driver`` in tests/book) are imported by their plain names: the test folders have no ``__init__.py``,
+so pytest (import mode ``prepend``) puts each test file's folder on ``sys.path`` before importing it.
+"""
 import os
 
+import pytest
 from hypothesis import HealthCheck, settings
+
+import _largest
 
 settings.register_profile(
     "scara",
@@ -12,3 +26,56 @@ settings.register_profile(
     derandomize=True,
 )
 settings.load_profile("scara")
+
+
+# --------------------------------------------------------------------------------------------------
+# chapter 3: the reference trajectory (test_trajectory_*.py)
+# --------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def ref():
+    from scara import reference_trajectory  # here, not at the top: the book's tests need not import the chapters
+
+    return reference_trajectory()
+
+
+# --------------------------------------------------------------------------------------------------
+# chapter 6: the reference, its joint reference and the four runs of the comparison table (test_control_*.py)
+# --------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def traj(ref):
+    """The same reference as chapter 3's (no test modifies it): computed once for both chapters."""
+    return ref
+
+
+@pytest.fixture(scope="session")
+def jref(traj):
+    from scara import clik2
+
+    return clik2(traj)
+
+
+@pytest.fixture(scope="session")
+def runs(traj, jref):
+    """The four runs of the chapter's comparison table, payload 5 kg."""
+    from scara import AdaptiveController, OperationalSpaceController, RobustController, simulate
+
+    from _control_shared import P5
+
+    ctrls = {"robust": RobustController(), "adaptive": AdaptiveController(),
+             "operational": OperationalSpaceController(), "operational_noint": OperationalSpaceController(integral=False)}
+    out = {}
+    for name, c in ctrls.items():
+        out[name] = (c, simulate(c, traj, P5, joint_reference=jref if c.reference_kind == "joint" else None))
+    return out
+
+
+# --------------------------------------------------------------------------------------------------
+# the closing note: the largest difference met by each independent check
+# --------------------------------------------------------------------------------------------------
+def pytest_terminal_summary(terminalreporter):
+    if not _largest.LARGEST:
+        return
+    terminalreporter.section("largest difference of each independent check")
+    for module in sorted(_largest.LARGEST):
+        for name, err in _largest.LARGEST[module].items():
+            terminalreporter.write_line(f"{module}: {name}: {err:.2e}")

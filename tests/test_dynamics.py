@@ -1,10 +1,10 @@
-"""The dynamic model (SPEC section 3) checked against an independent derivation and its structural properties.
+"""The dynamic model (chapter 5) checked against an independent derivation and its structural properties.
 
 * ``B``, ``C`` and ``g`` are derived here from scratch with sympy: positions of every mass from the product of
   DH matrices, their velocities by differentiation, the angular velocities from ``Rdot R^T``, the rotors spinning
   at ``omega_{i-1} + k_ri qdot_i z_{i-1}``; ``B`` is the Hessian of the kinetic energy in ``qd``, ``C`` the
   Christoffel matrix of that ``B``, ``g`` the gradient of the potential energy.
-* The SPEC's printed ``B`` is transcribed as a third, literal, version.
+* The ``B`` printed in chapter 5 is transcribed as a third, literal, version.
 * ``Bdot - 2C`` is skew-symmetric, with ``Bdot`` from finite differences along a motion.
 * ``Y pi`` reproduces the model's torque; ``pi`` can be identified by least squares from ``Y`` and the payload
   read back from it; ``forward_dynamics`` inverts the model; the power balance ``dE/dt = qd^T (tau - F qd)`` holds.
@@ -28,13 +28,10 @@ from scara import (
 )
 from scara import dynamics as dyn
 
+from _largest import record
+
 P0 = ScaraParams()
 P5 = ScaraParams().with_payload(5.0)
-MAX_ERR: dict = {}
-
-
-def _record(name, err):
-    MAX_ERR[name] = max(MAX_ERR.get(name, 0.0), float(err))
 
 
 def rel(a, b):
@@ -116,7 +113,7 @@ def _pvals(p):
 
 
 def spec_B(q, p):
-    """SPEC section 3's B, transcribed literally."""
+    """Chapter 5's B, transcribed literally."""
     c2 = math.cos(q[1])
     kr, Im = p.k_r, p.I_m
     m3 = p.m_l3 + p.m_L
@@ -146,7 +143,7 @@ positive = st.floats(0.01, 5.0, allow_nan=False)
 
 @st.composite
 def robots(draw):
-    """Random physical parameter sets around the SPEC's (gear ratios != 1 included)."""
+    """Random physical parameter sets around the robot of book/intro.md (gear ratios != 1 included)."""
     return ScaraParams(
         l1=draw(st.floats(0.05, 0.5)), l2=draw(st.floats(0.05, 0.5)), m_l1=draw(st.floats(1, 40)),
         m_l2=draw(st.floats(1, 40)), m_l3=draw(st.floats(1, 20)), I_l1=draw(positive), I_l2=draw(positive),
@@ -156,17 +153,17 @@ def robots(draw):
 
 
 # --------------------------------------------------------------------------------------------------
-# B, C, g against the symbolic derivation and the SPEC
+# B, C, g against the symbolic derivation and chapter 5's printed B
 # --------------------------------------------------------------------------------------------------
 @given(configs, vectors, st.sampled_from([P0, P5]))
 def test_inertia_equals_symbolic_derivation(symbolic, q, qd, p):
     Bs, Cs, gs, _ = symbolic
     B = inertia(q, p)
     err = rel(B, np.array(Bs(q, qd, _pvals(p)), float))
-    _record("B vs sympy", err)
+    record("B vs sympy", err)
     assert err < 1e-12
     err = rel(B, spec_B(q, p))
-    _record("B vs SPEC", err)
+    record("B vs chapter 5", err)
     assert err < 1e-12
 
 
@@ -176,13 +173,13 @@ def test_model_equals_symbolic_derivation_random_robots(symbolic, q, qd, p):
     vals = _pvals(p)
     assert rel(inertia(q, p), np.array(Bs(q, qd, vals), float)) < 1e-12
     errC = rel(coriolis(q, qd, p), np.array(Cs(q, qd, vals), float))
-    _record("C vs sympy Christoffel", errC)
+    record("C vs sympy Christoffel", errC)
     assert errC < 1e-12
     errg = rel(gravity(q, p), np.array(gs(q, qd, vals), float).ravel())
-    _record("g vs sympy dU/dq", errg)
+    record("g vs sympy dU/dq", errg)
     assert errg < 1e-12
     errT = abs(kinetic_energy(q, qd, p) - float(Ts(q, qd, vals))) / max(1.0, abs(kinetic_energy(q, qd, p)))
-    _record("T vs sympy", errT)
+    record("T vs sympy", errT)
     assert errT < 1e-12
     assert rel(inertia(q, p), spec_B(q, p)) < 1e-12
 
@@ -221,7 +218,7 @@ def test_Bdot_minus_2C_is_skew(q, qd, p):
             - (inertia(q + 2 * h * qd, p) - inertia(q - 2 * h * qd, p))) / (12 * h)
     N = Bdot - 2 * coriolis(q, qd, p)
     err = np.abs(N + N.T).max()
-    _record("Bdot - 2C skew", err)
+    record("Bdot - 2C skew", err)
     assert err < 1e-9
     # and x^T N x = 0 for any x (the form used in the passivity argument)
     x = np.array([1.0, -2.0, 0.5, 3.0])
@@ -239,7 +236,7 @@ def test_power_balance(q, qd, tau, p):
     dE = (total_energy(q + h * qd, qd + h * qdd, p) - total_energy(q - h * qd, qd - h * qdd, p)) / (2 * h)
     expected = qd @ tau - qd @ friction(p) @ qd
     err = abs(dE - expected) / max(1.0, abs(expected))
-    _record("power balance", err)
+    record("power balance", err)
     assert err < 1e-6
 
 
@@ -252,7 +249,7 @@ def test_regressor_reproduces_model(q, qd, qd_r, qdd_r, p):
     Y = regressor(q, qd, qd_r, qdd_r, p)
     pi = dynamic_parameters(p)
     err = rel(Y @ pi, tau)
-    _record("Y pi vs model", err)
+    record("Y pi vs model", err)
     assert err < 1e-12
     assert pi[0] == pytest.approx(p.m_l3 + p.m_L, abs=1e-12)
     assert payload_from_pi(pi, p) == pytest.approx(p.m_L, abs=1e-12)
@@ -281,7 +278,7 @@ def test_payload_is_identifiable_by_least_squares():
     assert np.linalg.matrix_rank(Y) == dyn.N_PI
     pi_hat = np.linalg.lstsq(Y, np.concatenate(taus), rcond=None)[0]
     err = rel(pi_hat, dynamic_parameters(p_true))
-    _record("least-squares pi", err)
+    record("least-squares pi", err)
     assert err < 1e-9
     assert payload_from_pi(pi_hat) == pytest.approx(3.7, abs=1e-9)
 
@@ -321,7 +318,7 @@ def test_pi_round_trip_spec_robot_and_refusals():
 def test_forward_dynamics_inverts_the_model(q, qd, qdd, p):
     tau = inverse_dynamics(q, qd, qdd, p)
     err = rel(forward_dynamics(q, qd, tau, p), qdd)
-    _record("forward(inverse(qdd)) - qdd", err)
+    record("forward(inverse(qdd)) - qdd", err)
     assert err < 1e-11
     # and against numpy's general solver on the model's terms
     ref = np.linalg.solve(inertia(q, p), tau - coriolis(q, qd, p) @ qd - friction(p) @ qd - gravity(q, p))
@@ -345,14 +342,14 @@ def test_solvers():
         M = rng.normal(size=(4, 4))
         b = rng.normal(size=4)
         x = np.empty(4)
-        assert dyn.gauss_solve4(M.copy(), b.copy(), x) == 0
-        assert np.allclose(x, np.linalg.solve(M, b), rtol=1e-9, atol=1e-9)
         S = M @ M.T + 0.1 * np.eye(4)
         assert dyn.cholesky_solve4(S.copy(), b.copy(), x) == 0
         assert np.allclose(x, np.linalg.solve(S, b), rtol=1e-9, atol=1e-9)
-    singular = np.ones((4, 4))
-    assert dyn.gauss_solve4(singular, np.ones(4), x) == 1
     assert dyn.cholesky_solve4(-np.eye(4), np.ones(4), x) == 1
+    # the live path: forward dynamics solves B qdd = tau - n with it
+    q, qd, tau = rng.normal(size=(3, 4))
+    qdd = forward_dynamics(q, qd, tau, P5)
+    assert np.allclose(inertia(q, P5) @ qdd, tau - inverse_dynamics(q, qd, np.zeros(4), P5), rtol=1e-10, atol=1e-10)
 
 
 def test_kernels_write_what_the_functions_return():
@@ -411,13 +408,5 @@ def test_plain_python_path_gives_the_same_numbers():
     ref = np.r_[inertia(q, P5).ravel(), coriolis(q, qd, P5).ravel(), gravity(q, P5), regressor(q, qd, qd, a, P5).ravel(),
                 forward_dynamics(q, qd, a, P5), inverse_dynamics(q, qd, a, P5), kinetic_energy(q, qd, P5)]
     err = np.abs(np.array(json.loads(out)) - ref).max()
-    _record("plain Python vs compiled", err)
+    record("plain Python vs compiled", err)
     assert err < 1e-12  # compiled code may contract a*b+c into FMA: round-off only
-
-
-def test_report_max_errors():
-    """Print the largest differences met by the independent checks above (for the closing note)."""
-    if not MAX_ERR:
-        pytest.skip("run together with the checks above")
-    print({k: f"{v:.2e}" for k, v in MAX_ERR.items()})
-    assert {"B vs sympy", "C vs sympy Christoffel", "Y pi vs model", "Bdot - 2C skew"} <= set(MAX_ERR)

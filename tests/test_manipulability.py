@@ -1,4 +1,4 @@
-"""Manipulability and its ellipsoids (SPEC section 2) against independent computations."""
+"""Manipulability and its ellipsoids (chapter 2) against independent computations."""
 import math
 
 import numpy as np
@@ -14,7 +14,9 @@ from scara import (
 angle = st.floats(-math.pi, math.pi, allow_nan=False)
 configs = st.tuples(angle, angle, st.floats(0, 1), angle).map(np.array)
 
-SPEC_TABLE = [
+#: the five reference configurations of chapter 2 and the manipulability the text states (section Five
+#: reference configurations)
+BOOK_TABLE = [
     ([0, -math.pi / 2, 0.5, 0], 0.250),
     ([0, math.pi / 4, 0.5, 0], 0.177),
     ([0, math.pi / 30, 0.5, 0], 0.026),
@@ -31,13 +33,13 @@ def test_w_is_abs_det_and_sqrt_det_JJT(q):
     assert math.isclose(w, math.sqrt(max(np.linalg.det(J @ J.T), 0.0)), abs_tol=1e-7)
 
 
-@pytest.mark.parametrize("q, w", SPEC_TABLE)
-def test_spec_reference_table(q, w):
+@pytest.mark.parametrize("q, w", BOOK_TABLE)
+def test_book_reference_table(q, w):
     assert round(manipulability(q), 3) == w
 
 
 def test_batch():
-    qs = np.array([q for q, _ in SPEC_TABLE], dtype=float)
+    qs = np.array([q for q, _ in BOOK_TABLE], dtype=float)
     assert np.allclose(manipulability(qs), [manipulability(q) for q in qs])
 
 

@@ -14,12 +14,13 @@ import time
 import numpy as np
 
 from .. import _compile
-from ..errors import ScaraError, ShapeError, UnstableError
+from ..errors import ScaraError, UnstableError
+from ..gains import gain_vector
 from ..params import ScaraParams
-from ..simulate import LAW_SIGNATURE, Controller, _compiled_law
+from ..simulate import LAW_SIGNATURE, OK, Controller, _compiled_law
 
 __all__ = [
-    "TAU_MAX", "MAX_ERROR", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
+    "TAU_MAX", "MAX_ERROR", "BOUND_FIELDS", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
     "BoundedController", "positive_gains", "control_summary", "chattering", "law_cost", "replay_law",
 ]
 
@@ -30,7 +31,8 @@ TAU_MAX = (200.0, 200.0, 1000.0, 50.0)
 #: treated as lost (code 3), long before the state becomes large enough for the engine's own limit.
 MAX_ERROR = 0.05
 
-OK, TORQUE_BOUND, ERROR_BOUND, SINGULAR_JACOBIAN = 0, 2, 3, 4
+# OK (0) is the engine's own "all is well" (:data:`scara.simulate.OK`); a law's failure codes start at 2
+TORQUE_BOUND, ERROR_BOUND, SINGULAR_JACOBIAN = 2, 3, 4
 #: The meaning of each code a chapter-6 law may return.
 FAILURE_CAUSES = {
     TORQUE_BOUND: "a commanded torque exceeded its bound tau_max",
@@ -39,33 +41,21 @@ FAILURE_CAUSES = {
 }
 
 
-def positive_gains(value, name: str, n: int = 4, *, allow_inf: bool = False) -> np.ndarray:
-    """A gain given as a number, a vector of ``n`` entries or a diagonal ``n x n`` matrix, as a (n,) array.
+#: The last fields of every chapter-6 law's gain array (:class:`~scara._compile.ArrayLayout`): the stated bounds.
+BOUND_FIELDS = (("tau_max", 4), ("max_error", 1))
 
-    Raises :class:`~scara.ShapeError` for another shape or a matrix with off-diagonal entries, and
-    :class:`~scara.ScaraError` for an entry that is not strictly positive (naming it), or infinite unless
-    ``allow_inf``.
-    """
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ShapeError(f"{name} must be a number, a vector of {n} numbers or a diagonal matrix, got {value!r}") from exc
-    if arr.ndim == 0:
-        arr = np.full(n, float(arr))
-    elif arr.ndim == 2:
-        if arr.shape != (n, n) or np.any(arr != np.diag(np.diag(arr))):
-            raise ShapeError(f"{name} must be a diagonal {n}x{n} matrix or a vector of {n} gains, got shape "
-                             f"{arr.shape} with off-diagonal entries")
-        arr = np.diag(arr).copy()
-    if arr.shape != (n,):
-        raise ShapeError(f"{name} must have {n} entries, got shape {arr.shape}")
-    if np.any(np.isnan(arr)) or (not allow_inf and np.any(np.isinf(arr))):
-        i = int(np.argmax(~np.isfinite(arr)))
-        raise ScaraError(f"{name}[{i}] = {arr[i]} must be a finite number")
-    if np.any(arr <= 0):
-        i = int(np.argmax(arr <= 0))
-        raise ScaraError(f"{name}[{i}] = {arr[i]:g} must be > 0 (every gain of {name} must be strictly positive)")
-    return arr.astype(float)
+@_compile.kernel
+def torque_code(tau, gains, tau_max_at):
+    """:data:`TORQUE_BOUND` when some ``|tau_i|`` exceeds its bound ``gains[tau_max_at + i]`` (or is not finite),
+    :data:`OK` otherwise: the torque check of the chapter-6 laws, inside their compiled step."""
+    for i in range(4):
+        if not abs(tau[i]) <= gains[tau_max_at + i]:
+            return TORQUE_BOUND
+    return OK
+
+
+#: the check of every chapter-6 gain and bound (the ``"positive"`` rule of :mod:`scara.gains`)
+positive_gains = gain_vector
 
 
 class BoundedController(Controller):
@@ -85,8 +75,9 @@ class BoundedController(Controller):
             max_error = MAX_ERROR
         self.max_error = float(positive_gains(max_error, "max_error", 1)[0])
 
-    def _bounds_array(self) -> np.ndarray:
-        return np.concatenate([self.tau_max, [self.max_error]])
+    def _bounds(self) -> dict:
+        """The values of :data:`BOUND_FIELDS`, for a gain layout's ``pack``."""
+        return {"tau_max": self.tau_max, "max_error": self.max_error}
 
     def explain(self, code: int) -> str:
         """The cause behind a law's return code (see :data:`FAILURE_CAUSES`), with the bound it broke.

@@ -14,12 +14,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compile import ArrayLayout
 from ..dynamics import DP_ML3, N_PI, PI_NAMES, dynamic_parameters, regressor_kernel
 from ..errors import ScaraError, ShapeError
 from ..kinematics import _params
 from ..params import ScaraParams
 from ..simulate import control_law
-from ._common import BoundedController, positive_gains
+from ._common import BOUND_FIELDS, ERROR_BOUND, BoundedController, positive_gains, torque_code
 
 __all__ = ["AdaptiveController", "adaptation_gains"]
 
@@ -50,8 +51,9 @@ def adaptation_gains(K_pi) -> np.ndarray:
     return 1.0 / arr
 
 
-# gains layout: Lambda 0:4, K_D 4:8, K_pi^-1 8:21, tau_max 21:25, max_error 25
-_G_KPI, _G_TMAX, _G_EMAX = 8, 8 + N_PI, 12 + N_PI
+#: The law's gain array (``K_pi_inv = K_pi^-1``).
+GAINS = ArrayLayout(("Lambda", 4), ("K_D", 4), ("K_pi_inv", N_PI), *BOUND_FIELDS)
+_G_LAMBDA, _G_KD, _G_KPI, _G_TMAX, _G_EMAX = GAINS.offsets
 
 
 @control_law
@@ -59,7 +61,7 @@ def adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Slotine-Li step (module docstring). ``state = pi_hat`` (13,), updated in place after ``u`` is formed.
 
     ``signals = [payload_estimate, ||sigma||]`` (kg, mixed units), the estimate being the one used at ``t``.
-    Returns 0, 2 (torque beyond ``tau_max``) or 3 (a joint error beyond ``max_error``).
+    Returns :data:`OK`, :data:`TORQUE_BOUND` or :data:`ERROR_BOUND`.
     """
     Y = work[0:13].reshape((4, 13))
     qd_r = work[13]
@@ -70,8 +72,8 @@ def adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     for i in range(4):
         qt = ref[i] - q[i]
         if not abs(qt) <= emax:
-            return 3
-        lam = gains[i]
+            return ERROR_BOUND
+        lam = gains[_G_LAMBDA + i]
         qd_r[i] = ref[4 + i] + lam * qt
         qdd_r[i] = ref[8 + i] + lam * (ref[4 + i] - qd[i])
         sigma[i] = qd_r[i] - qd[i]
@@ -79,14 +81,12 @@ def adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     regressor_kernel(q, qd, qd_r, qdd_r, model, Y)
     signals[0] = state[0] - model[DP_ML3]
     signals[1] = np.sqrt(ns)
-    code = 0
     for i in range(4):
-        u = gains[4 + i] * sigma[i]
+        u = gains[_G_KD + i] * sigma[i]
         for j in range(13):
             u += Y[i, j] * state[j]
         tau[i] = u
-        if not abs(u) <= gains[_G_TMAX + i]:
-            code = 2
+    code = torque_code(tau, gains, _G_TMAX)
     for j in range(13):
         gj = gains[_G_KPI + j]
         if gj != 0.0:
@@ -140,7 +140,7 @@ class AdaptiveController(BoundedController):
         return tuple(n for n, g in zip(PI_NAMES, self.K_pi_inv) if g > 0)
 
     def gains_array(self) -> np.ndarray:
-        return np.concatenate([self.Lambda, self.K_D, self.K_pi_inv, self._bounds_array()])
+        return GAINS.pack(Lambda=self.Lambda, K_D=self.K_D, K_pi_inv=self.K_pi_inv, **self._bounds())
 
     def initial_state(self) -> np.ndarray:
         return dynamic_parameters(self.model)

@@ -11,22 +11,21 @@ sec. 8.6.3), discrete-time at the sampling period.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from ..dynamics import (DP_A1, DP_A2, DP_D0, DP_FM, DP_G0, DP_KR, DP_ML, DP_ML3, coriolis_vector_kernel,
-                        inertia_kernel)
+from .._compile import ArrayLayout
+from ..dynamics import DP_A1, DP_A2, DP_D0, inverse_dynamics_kernel
 from ..errors import UnstableError
-from ..kinematics import _params
+from ..kinematics import _params, jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..params import ScaraParams
 from ..simulate import control_law
-from ._common import BoundedController, positive_gains
+from ._common import BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code
 
 __all__ = ["OperationalSpaceController"]
 
-# gains layout: K_P 0:4, K_D 4:8, K_I 8:12, tau_max 12:16, max_error 16
-_G_TMAX, _G_EMAX = 12, 16
+#: The law's gain array.
+GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("K_I", 4), *BOUND_FIELDS)
+_G_KP, _G_KD, _G_KI, _G_TMAX, _G_EMAX = GAINS.offsets
 
 
 @control_law
@@ -34,78 +33,49 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     """Operational-space inverse dynamics step (module docstring). ``ref = [x_d, xd_d, xdd_d]``; ``state`` is
     the integral ``s`` (4,) of the error, updated after ``u`` is formed.
 
-    The kinematics of chapter 1 are written out once here (one sine and cosine each of ``theta1``,
-    ``theta1 + theta2``): ``x_e``, ``J_A qd``, ``Jdot_A qd = [-(a1 c1 w1^2 + a2 c12 w12^2), a1 s1 w1^2 + a2 s12
-    w12^2, 0, 0]`` (``w1 = qd1``, ``w12 = qd1 + qd2``), and ``J_A y = a`` is solved by its block structure: the
-    planar 2x2 block (determinant ``-a1 a2 sin theta2``) for ``y1, y2``, then ``y3 = -a_z`` and
-    ``y4 = a_phi - y1 - y2``. The tests check all of it against :func:`~scara.jacobian` and numpy.
+    ``x_e``, ``J_A`` and ``Jdot_A`` are the kernels of :mod:`scara.kinematics` (chapter 1), and ``J_A y = a`` is
+    solved by its block structure: the planar 2x2 block (determinant ``-a1 a2 sin theta2``) for ``y1, y2``,
+    then ``y3 = -a_z`` and ``y4 = a_phi - y1 - y2``. ``u = B_hat y + n_hat`` is the controller's model's
+    inverse dynamics at ``qdd = y`` (:func:`~scara.dynamics.inverse_dynamics_kernel`).
 
-    ``signals = K_I s`` (4,) (m/s^2, rad/s^2): the integral action. Returns 0, 2 (torque beyond ``tau_max``),
-    3 (an operational error beyond ``max_error``) or 4 (singular Jacobian).
+    ``signals = K_I s`` (4,) (m/s^2, rad/s^2): the integral action. Returns :data:`OK`, :data:`TORQUE_BOUND`,
+    :data:`ERROR_BOUND` or :data:`SINGULAR_JACOBIAN`.
     """
-    B = work[0:4]
-    a = work[4]
-    y = work[5]
-    c = work[6]
-    xt = work[7]
+    J = work[4:8]
+    Jd = work[8:12]
+    xt = work[12]
+    a = work[13]
+    y = work[14]
     a1 = model[DP_A1]
     a2 = model[DP_A2]
-    s1 = math.sin(q[0])
-    c1 = math.cos(q[0])
-    s12 = math.sin(q[0] + q[1])
-    c12 = math.cos(q[0] + q[1])
-    w1 = qd[0]
-    w12 = qd[0] + qd[1]
-    # pose, velocity J_A qd and Jdot_A qd
-    px = a1 * c1 + a2 * c12
-    py = -(a1 * s1 + a2 * s12)
-    J11 = py
-    J12 = -a2 * s12
-    J21 = -px
-    J22 = -a2 * c12
-    xt[0] = ref[0] - px
-    xt[1] = ref[1] - py
-    xt[2] = ref[2] - (model[DP_D0] - q[2])
-    xt[3] = ref[3] - (q[0] + q[1] + q[3])
-    v0 = J11 * qd[0] + J12 * qd[1]
-    v1 = J21 * qd[0] + J22 * qd[1]
-    v2 = -qd[2]
-    v3 = qd[0] + qd[1] + qd[3]
-    jd0 = -(a1 * c1 * w1 * w1 + a2 * c12 * w12 * w12)
-    jd1 = a1 * s1 * w1 * w1 + a2 * s12 * w12 * w12
+    pose_kernel(q, a1, a2, model[DP_D0], xt)
+    jacobian_kernel(q, a1, a2, J)
+    jacobian_dot_kernel(q, qd, a1, a2, Jd)
     emax = gains[_G_EMAX]
     for i in range(4):
+        xt[i] = ref[i] - xt[i]
         if not abs(xt[i]) <= emax:
-            return 3
-        ia = gains[8 + i] * state[i]
+            return ERROR_BOUND
+    for i in range(4):
+        v = 0.0
+        jdq = 0.0
+        for j in range(4):
+            v += J[i, j] * qd[j]
+            jdq += Jd[i, j] * qd[j]
+        ia = gains[_G_KI + i] * state[i]
         signals[i] = ia
-        a[i] = ref[8 + i] + gains[i] * xt[i] + ia
-    a[0] += gains[4] * (ref[4] - v0) - jd0
-    a[1] += gains[5] * (ref[5] - v1) - jd1
-    a[2] += gains[6] * (ref[6] - v2)
-    a[3] += gains[7] * (ref[7] - v3)
+        a[i] = ref[8 + i] + gains[_G_KP + i] * xt[i] + gains[_G_KD + i] * (ref[4 + i] - v) + ia - jdq
     # y = J_A^-1 a
-    det = J11 * J22 - J12 * J21
+    det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
     if not abs(det) > 1e-12 * a1 * a2:
-        return 4
-    y[0] = (J22 * a[0] - J12 * a[1]) / det
-    y[1] = (J11 * a[1] - J21 * a[0]) / det
+        return SINGULAR_JACOBIAN
+    y[0] = (J[1, 1] * a[0] - J[0, 1] * a[1]) / det
+    y[1] = (J[0, 0] * a[1] - J[1, 0] * a[0]) / det
     y[2] = -a[2]
     y[3] = a[3] - y[0] - y[1]
-    # u = B_hat y + C_hat qd + F qd + g_hat
-    inertia_kernel(q, model, B)
-    coriolis_vector_kernel(q, qd, qd, model, c)
-    m3g = (model[DP_ML3] + model[DP_ML]) * model[DP_G0]
-    code = 0
-    for i in range(4):
-        u = c[i] + model[DP_KR + i] * model[DP_KR + i] * model[DP_FM + i] * qd[i]
-        for j in range(4):
-            u += B[i, j] * y[j]
-        if i == 2:
-            u -= m3g
-        tau[i] = u
-        if not abs(u) <= gains[_G_TMAX + i]:
-            code = 2
+    # u = B_hat y + C_hat qd + F qd + g_hat (B_hat goes into work[0:4])
+    inverse_dynamics_kernel(q, qd, y, model, work, tau)
+    code = torque_code(tau, gains, _G_TMAX)
     for i in range(4):
         state[i] += dt * xt[i]
     return code
@@ -138,7 +108,7 @@ class OperationalSpaceController(BoundedController):
     law = staticmethod(operational_law)
     reference_kind = "operational"
     signal_names = ("integral_action_x", "integral_action_y", "integral_action_z", "integral_action_phi")
-    work_rows = 8
+    work_rows = 15
 
     def __init__(self, integral: bool = True, K_P=1200.0, K_D=60.0, K_I=8000.0, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
@@ -160,7 +130,7 @@ class OperationalSpaceController(BoundedController):
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
-        return np.concatenate([self.K_P, self.K_D, self.K_I, self._bounds_array()])
+        return GAINS.pack(K_P=self.K_P, K_D=self.K_D, K_I=self.K_I, **self._bounds())
 
     def initial_state(self) -> np.ndarray:
         return np.zeros(4)

@@ -18,12 +18,13 @@ import math
 
 import numpy as np
 
-from ..dynamics import DP_FM, DP_KR, gravity_kernel, inertia
+from .._compile import ArrayLayout
+from ..dynamics import friction_kernel, gravity_kernel, inertia
 from ..errors import ScaraError, UnstableError, as_array, check_positive
 from ..kinematics import _params
 from ..params import ScaraParams
 from ..simulate import control_law
-from ._common import BoundedController, positive_gains
+from ._common import BOUND_FIELDS, ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains
 
 __all__ = ["RobustController", "sliding_weight", "lyapunov_matrix", "sliding_matrix", "inertia_uncertainty",
            "inertia_eigenvalues",
@@ -153,9 +154,9 @@ def rho_bound(alpha: float, qdd_max: float, eta0_max: float) -> float:
 # --------------------------------------------------------------------------------------------------
 # the law
 # --------------------------------------------------------------------------------------------------
-# gains layout: K_P 0:4, K_D 4:8, Z = D^T Q (4x8 row-major) 8:40, rho 40, epsilon 41, B_hat 42:46,
-#               tau_max 46:50, max_error 50
-_G_Z, _G_RHO, _G_EPS, _G_BH, _G_TMAX, _G_EMAX = 8, 40, 41, 42, 46, 50
+#: The law's gain array (``Z = D^T Q``, 4x8 row-major).
+GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("Z", 32), ("rho", 1), ("epsilon", 1), ("B_hat", 4), *BOUND_FIELDS)
+_G_KP, _G_KD, _G_Z, _G_RHO, _G_EPS, _G_BH, _G_TMAX, _G_EMAX = GAINS.offsets
 
 
 @control_law
@@ -163,18 +164,19 @@ def robust_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Robust control step (see the module docstring). ``ref = [q_d, qd_d, qdd_d]``.
 
     ``signals = [||z||, w_1, w_2, w_3, w_4]``. Returns 0, 2 (torque beyond ``tau_max``) or 3 (a joint error
-    beyond ``max_error``).
+    beyond ``max_error``): :data:`OK`, :data:`TORQUE_BOUND`, :data:`ERROR_BOUND`.
     """
     qt = work[0]
     qtd = work[1]
     z = work[2]
     g = work[3]
+    fr = work[4]
     emax = gains[_G_EMAX]
     for i in range(4):
         qt[i] = ref[i] - q[i]
         qtd[i] = ref[4 + i] - qd[i]
         if not abs(qt[i]) <= emax:
-            return 3
+            return ERROR_BOUND
     nz2 = 0.0
     for i in range(4):
         s = 0.0
@@ -187,17 +189,17 @@ def robust_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     eps = gains[_G_EPS]
     scale = rho / nz if nz >= eps else rho / eps
     gravity_kernel(q, model, g)
+    friction_kernel(qd, model, fr)
     signals[0] = nz
     for i in range(4):
         w = scale * z[i]
         signals[1 + i] = w
-        y = ref[8 + i] + gains[4 + i] * qtd[i] + gains[i] * qt[i] + w
-        fr = model[DP_KR + i] * model[DP_KR + i] * model[DP_FM + i] * qd[i]
-        u = gains[_G_BH + i] * y + fr + g[i]
+        y = ref[8 + i] + gains[_G_KD + i] * qtd[i] + gains[_G_KP + i] * qt[i] + w
+        u = gains[_G_BH + i] * y + fr[i] + g[i]
         tau[i] = u
         if not abs(u) <= gains[_G_TMAX + i]:
-            return 2
-    return 0
+            return TORQUE_BOUND
+    return OK
 
 
 class RobustController(BoundedController):
@@ -233,7 +235,7 @@ class RobustController(BoundedController):
     name = "robust"
     reference_kind = "joint"
     signal_names = ("z_norm", "w_1", "w_2", "w_3", "w_4")
-    work_rows = 4
+    work_rows = 5
 
     def __init__(self, K_P=900.0, K_D=60.0, rho: float = 20.0, epsilon: float = 0.05, Lambda=30.0, P=None,
                  B_hat=B_HAT, model: ScaraParams | None = None, tau_max=None, max_error=None):
@@ -255,8 +257,8 @@ class RobustController(BoundedController):
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
-        return np.concatenate([self.K_P, self.K_D, self.sliding.ravel(), [self.rho, self.epsilon], self.B_hat,
-                               self._bounds_array()])
+        return GAINS.pack(K_P=self.K_P, K_D=self.K_D, Z=self.sliding, rho=self.rho, epsilon=self.epsilon,
+                          B_hat=self.B_hat, **self._bounds())
 
     def epsilon_bound(self, lam_max: float, dt: float = 1e-3) -> float:
         """The thinnest boundary layer whose sampled linear loop is still stable (below it, chattering).

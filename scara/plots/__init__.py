@@ -1,11 +1,11 @@
 """Plotly figure builders for the book: data in, ``go.Figure`` out; no robotics is computed here beyond
 calls into the math modules. Importing this package registers the book's offline HTML renderer.
 
-One sub-module per chapter; their public builders are re-exported here.
+One sub-module per chapter; their public builders are re-exported here. :mod:`scara.plots.layout` lays out
+every figure on the page; :mod:`scara.plots._common` holds the conventions the chapters share.
 """
-from ._common import (
-    AXIS_COLOURS, JOINT_COLOURS, PALETTE, base_layout, new_figure, publish, slider, use_book_renderer,
-)
+from ._common import AXIS_COLOURS, JOINT_COLOURS, PALETTE, publish, slider, use_book_renderer
+from .layout import base_layout
 
 use_book_renderer()
 from .kinematics import (

@@ -1,14 +1,19 @@
-"""Shared figure conventions: the book renderer, one palette per method, base layout, slider steps."""
+"""Shared figure conventions: the book renderer, one colour, dash style and legend name per method or
+controller, the joints' names and units, slider steps, and the little converters every builder uses to hand
+its data to plotly. The page layout of the figures is :mod:`scara.plots.layout`."""
 from __future__ import annotations
 
-from contextlib import contextmanager
+import math
 
+import numpy as np
 import plotly.graph_objects as go
 import plotly.io as pio
 from plotly.io._base_renderers import MimetypeRenderer
 
 __all__ = [
-    "PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "TEMPLATE", "without_template", "base_layout", "slider", "new_figure", "use_book_renderer", "publish",
+    "PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "DASHES", "JOINT_NAMES", "JOINT_UNITS", "LOG_FLOOR", "METHOD_LABELS",
+    "METHOD_DASHES", "CONTROLLER_LABELS", "CONTROLLER_DASHES", "run_name", "run_label", "run_colour", "run_dash",
+    "thin", "envelope", "f32", "as_list", "slider", "use_book_renderer", "publish",
 ]
 
 # Okabe-Ito colours: distinguishable with the common colour-vision deficiencies and, with the dash styles
@@ -32,6 +37,99 @@ PALETTE = {
 AXIS_COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7")
 JOINT_COLOURS = AXIS_COLOURS
 DASHES = ("solid", "dash", "dot", "dashdot")
+#: names of the joint variables, in the order of ``q``
+JOINT_NAMES = ("θ1", "θ2", "d3", "θ4")
+#: generalised-force unit of each joint
+JOINT_UNITS = ("N m", "N m", "N", "N m")
+#: log axes: values below this (exact zeros) are drawn at the floor
+LOG_FLOOR = 1e-12
+
+#: legend names of the CLIK methods of chapter 4 (keys: ``ClikResult.method``, also keys of ``PALETTE``)
+METHOD_LABELS = {
+    "inverse": "Jacobian inverse",
+    "transpose": "Jacobian transpose",
+    "pseudoinverse": "pseudo-inverse",
+    "second_order": "second order",
+}
+#: one dash style per method, so that the curves stay apart in greyscale (colours: ``PALETTE``)
+METHOD_DASHES = {"inverse": "solid", "transpose": "dash", "pseudoinverse": "dot", "second_order": "dashdot"}
+#: legend names of the controllers of chapter 6 (keys: ``SimulationResult.controller``, also keys of ``PALETTE``)
+CONTROLLER_LABELS = {
+    "robust": "robust",
+    "adaptive": "adaptive (Slotine-Li)",
+    "operational": "operational ID + integral",
+    "operational_noint": "operational ID, no integral",
+    "pd_gravity": "PD + gravity",
+}
+#: one dash style per controller (colours: ``PALETTE``), so that the curves stay apart in greyscale
+CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot", "operational_noint": "dashdot",
+                     "pd_gravity": "longdash"}
+
+
+def run_name(r) -> str:
+    """The method of a CLIK run (``ClikResult.method``) or the controller of a simulation
+    (``SimulationResult.controller``): the key of its colour, dash style and legend name. ``r`` may also be
+    that name itself, for a curve drawn without its run."""
+    if isinstance(r, str):
+        return r
+    method = getattr(r, "method", None)
+    if isinstance(method, str):
+        return method
+    return getattr(r, "controller", "") or "controller"
+
+
+def run_label(r) -> str:
+    """The legend name of a run; a pseudo-inverse run also names its relaxed component."""
+    name = run_name(r)
+    if name == "pseudoinverse" and not isinstance(r, str):
+        return f"pseudo-inverse ({r.gains.get('relaxed', 'x')} relaxed)"
+    return METHOD_LABELS.get(name) or CONTROLLER_LABELS.get(name, name)
+
+
+def run_colour(r) -> str:
+    """The colour of a run's method or controller (black for one the palette does not know)."""
+    return PALETTE.get(run_name(r), PALETTE["reference"])
+
+
+def run_dash(r) -> str:
+    """The dash style of a run's method or controller (solid for one without its own)."""
+    name = run_name(r)
+    return METHOD_DASHES.get(name) or CONTROLLER_DASHES.get(name, "solid")
+
+
+def thin(n: int, points: int = 1000) -> np.ndarray:
+    """Indices of about ``points`` evenly spaced samples out of ``n`` (first and last included)."""
+    if n <= points:
+        return np.arange(n)
+    return np.unique(np.linspace(0, n - 1, int(points)).round().astype(int))
+
+
+def envelope(t, y, points: int = 1000):
+    """``(t_k, max |y|)`` over about ``points`` consecutive blocks of the series ``y`` (N,): an upper envelope
+    that keeps every peak when a long run is thinned for plotting. Values are floored at 1e-12 for log axes."""
+    t = np.asarray(t)
+    y = np.abs(np.asarray(y, dtype=float))
+    n = len(t)
+    if n <= points:
+        return t, np.maximum(y, LOG_FLOOR)
+    size = int(math.ceil(n / points))
+    m = n // size
+    head = y[: m * size].reshape(m, size).max(axis=1)
+    tt = t[: m * size : size] + 0.5 * size * (t[1] - t[0])
+    if m * size < n:
+        head = np.append(head, y[m * size:].max())
+        tt = np.append(tt, t[-1])
+    return tt, np.maximum(head, LOG_FLOOR)
+
+
+def f32(a) -> np.ndarray:
+    """Plot data as float32: half the page weight, 7 significant digits (ample for a curve on screen)."""
+    return np.asarray(a, dtype=np.float32)
+
+
+def as_list(values, digits: int = 4) -> list:
+    """A plain list for plotly (NaN becomes ``None``, a gap in a line), rounded to keep pages light."""
+    return [None if not np.isfinite(v) else round(float(v), digits) for v in np.ravel(values)]
 
 
 class _BookHtmlRenderer(MimetypeRenderer):
@@ -70,56 +168,6 @@ def _plain_numpy_scalars() -> None:
     fmt.for_type(np.floating, lambda obj, pp, cycle: pp.text(repr(float(obj))))
     fmt.for_type(np.integer, lambda obj, pp, cycle: pp.text(repr(int(obj))))
     fmt.for_type(np.bool_, lambda obj, pp, cycle: pp.text(repr(bool(obj))))
-
-
-#: the book's plotly template
-TEMPLATE = "plotly_white"
-_template_off = 0
-
-
-@contextmanager
-def without_template():
-    """Build figures without the book's template inside this block.
-
-    Applying a template costs about 13 ms per figure; a live panel sends its template once, with the figure it
-    first shows, and builds every later figure of the same kind in this block (only what changes is sent).
-    """
-    global _template_off
-    # plotly's own default template would be applied instead: switch it off for the block. The setter of
-    # ``pio.templates.default`` validates the template (11 ms a call), so its stored value is swapped directly.
-    has_default = hasattr(pio.templates, "_default")
-    default = pio.templates._default if has_default else None
-    _template_off += 1
-    if has_default:
-        pio.templates._default = None
-    try:
-        yield
-    finally:
-        _template_off -= 1
-        if has_default and not _template_off:
-            pio.templates._default = default
-
-
-def base_layout(title: str | None = None, height: int = 420, **kw) -> dict:
-    """The book's layout defaults: readable on a laptop and a phone-width page."""
-    lay = dict(
-        template=TEMPLATE,
-        height=height,
-        margin=dict(l=60, r=20, t=60 if title else 30, b=50),
-        legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="left", x=0),
-        font=dict(size=13),
-    )
-    if title:
-        lay["title"] = dict(text=title, x=0.0, xanchor="left")
-    lay.update(kw)
-    if _template_off:
-        lay.pop("template", None)
-    return lay
-
-
-def new_figure(title: str | None = None, height: int = 420, **kw) -> go.Figure:
-    """An empty figure with :func:`base_layout`."""
-    return go.Figure(layout=base_layout(title, height, **kw))
 
 
 def slider(steps: list[dict], prefix: str, active: int = 0, pad_top: int = 40) -> dict:

@@ -17,8 +17,11 @@ from plotly.subplots import make_subplots
 
 from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik
 from ..errors import ScaraError, UnstableError
-from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
-from .kinematics import finish_layout
+from ._common import (
+    AXIS_COLOURS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, METHOD_DASHES, METHOD_LABELS, PALETTE, f32,
+    envelope, run_colour, run_dash, run_label, slider, thin,
+)
+from .layout import finish_layout, stacked_axes
 
 __all__ = [
     "METHOD_LABELS",
@@ -40,38 +43,9 @@ __all__ = [
 ]
 
 
-METHOD_LABELS = {
-    "inverse": "Jacobian inverse",
-    "transpose": "Jacobian transpose",
-    "pseudoinverse": "pseudo-inverse",
-    "second_order": "second order",
-}
-#: one dash style per method, so that the curves stay apart in greyscale (colours: ``PALETTE``)
-METHOD_DASHES = {"inverse": "solid", "transpose": "dash", "pseudoinverse": "dot", "second_order": "dashdot"}
-_JOINTS = ("θ1", "θ2", "d3", "θ4")
 #: default gain scales of :func:`gain_slider_figure`: the seed (1), up to and past the transpose's limit (~3.92
 #: on the reference) and close to the inverse's (2 / (dt K) = 5 for the seed's x, y, z gains)
 GAIN_SCALES = (0.25, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 3.5, 3.9, 4.5, 4.9)
-_FLOOR = 1e-12  # log axes: values below this (exact zeros) are drawn at the floor
-
-
-def _f(a):
-    """Plot data as float32: half the page weight, 7 significant digits (ample for a curve on screen)."""
-    return np.asarray(a, dtype=np.float32)
-
-
-def _label(r: ClikResult) -> str:
-    if r.method == "pseudoinverse":
-        return f"pseudo-inverse ({r.gains.get('relaxed', 'x')} relaxed)"
-    return METHOD_LABELS.get(r.method, r.method)
-
-
-def _colour(r: ClikResult) -> str:
-    return PALETTE.get(r.method, PALETTE["reference"])
-
-
-def _dash(r: ClikResult) -> str:
-    return METHOD_DASHES.get(r.method, "solid")
 
 
 def _results(results) -> list:
@@ -85,31 +59,6 @@ def _results(results) -> list:
     return out
 
 
-def thin(n: int, points: int = 1000) -> np.ndarray:
-    """Indices of about ``points`` evenly spaced samples out of ``n`` (first and last included)."""
-    if n <= points:
-        return np.arange(n)
-    return np.unique(np.linspace(0, n - 1, int(points)).round().astype(int))
-
-
-def envelope(t, y, points: int = 1000):
-    """``(t_k, max |y|)`` over about ``points`` consecutive blocks of the series ``y`` (N,): an upper envelope
-    that keeps every peak when a long run is thinned for plotting. Values are floored at 1e-12 for log axes."""
-    t = np.asarray(t)
-    y = np.abs(np.asarray(y, dtype=float))
-    n = len(t)
-    if n <= points:
-        return t, np.maximum(y, _FLOOR)
-    size = int(math.ceil(n / points))
-    m = n // size
-    head = y[: m * size].reshape(m, size).max(axis=1)
-    tt = t[: m * size : size] + 0.5 * size * (t[1] - t[0])
-    if m * size < n:
-        head = np.append(head, y[m * size:].max())
-        tt = np.append(tt, t[-1])
-    return tt, np.maximum(head, _FLOOR)
-
-
 def clik_joints_figure(results, points: int = 800, title: str | None = None, height: int = 560) -> go.Figure:
     """Joint motion in three stacked panels sharing the time axis: the revolute joints ``θ1, θ2, θ4`` (rad),
     the quill ``d3`` (m), and the revolute joint rates (rad/s). One column, so that it reads at phone width;
@@ -119,28 +68,24 @@ def clik_joints_figure(results, points: int = 800, title: str | None = None, hei
     groups, titles = [], []
     for r in rs:
         idx = thin(len(r.t), points)
-        t = _f(r.t[idx])
+        t = f32(r.t[idx])
         first = len(fig.data)
-        for j, name in enumerate(_JOINTS):
+        for j, name in enumerate(JOINT_NAMES):
             style = dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j])
             if j == 2:
-                fig.add_trace(go.Scatter(x=t, y=_f(r.q[idx, j]), mode="lines", name=f"{name} · {_label(r)}",
+                fig.add_trace(go.Scatter(x=t, y=f32(r.q[idx, j]), mode="lines", name=f"{name} · {run_label(r)}",
                                          legendgroup=f"{r.method}{name}", line=style), row=2, col=1)
                 continue
-            fig.add_trace(go.Scatter(x=t, y=_f(r.q[idx, j]), mode="lines", name=f"{name} · {_label(r)}",
+            fig.add_trace(go.Scatter(x=t, y=f32(r.q[idx, j]), mode="lines", name=f"{name} · {run_label(r)}",
                                      legendgroup=f"{r.method}{name}", line=style), row=1, col=1)
-            fig.add_trace(go.Scatter(x=t, y=_f(r.qd[idx, j]), mode="lines", name=f"{name} rate · {_label(r)}",
+            fig.add_trace(go.Scatter(x=t, y=f32(r.qd[idx, j]), mode="lines", name=f"{name} rate · {run_label(r)}",
                                      legendgroup=f"{r.method}{name}", showlegend=False, line=style), row=3, col=1)
         groups.append(list(range(first, len(fig.data))))
-        titles.append(f"Joint motion, {_label(r)}")
+        titles.append(f"Joint motion, {run_label(r)}")
     heads = titles if title is None else [title] * len(rs)
-    menu = [(_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
+    menu = [(run_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
     finish_layout(fig, heads[0], height, groups=groups if menu else None, menu=menu)
-    fig.update_yaxes(title_text="θ1, θ2, θ4 (rad)", row=1, col=1)
-    fig.update_yaxes(title_text="d3 (m)", row=2, col=1)
-    fig.update_yaxes(title_text="rates (rad/s)", row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
-    return fig
+    return stacked_axes(fig, ("θ1, θ2, θ4 (rad)", "d3 (m)", "rates (rad/s)"))
 
 
 def clik_error_figure(results, points: int = 1000, title: str | None = None, height: int = 520,
@@ -154,14 +99,11 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
         keep = r.t >= r.t[0] + settle
         for row, series in ((1, r.position_error), (2, r.orientation_error)):
             tt, yy = envelope(r.t[keep], series[keep], points)
-            fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=_label(r), legendgroup=r.method,
-                                     showlegend=row == 1, line=dict(color=_colour(r), width=1.8, dash=_dash(r))),
+            fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=run_label(r), legendgroup=r.method,
+                                     showlegend=row == 1, line=dict(color=run_colour(r), width=1.8, dash=run_dash(r))),
                           row=row, col=1)
     finish_layout(fig, title or "Tracking error along the reference", height)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, ("‖e_p‖ (m)", "|e_φ| (rad)"), log=(1, 2))
 
 
 def error_components_figure(results, points: int = 1000, title: str | None = None, height: int = 520) -> go.Figure:
@@ -175,14 +117,14 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
         idx = thin(len(r.t), points)
         first = len(fig.data)
         for i, name in enumerate(COMPONENTS):
-            fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.e[idx, i]), mode="lines",
-                                     name=f"e_{name} · {_label(r)}",
+            fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.e[idx, i]), mode="lines",
+                                     name=f"e_{name} · {run_label(r)}",
                                      line=dict(color=AXIS_COLOURS[i], width=1.6, dash=DASHES[i])),
                           row=1 if i < 3 else 2, col=1)
         groups.append(list(range(first, len(fig.data))))
-        titles.append(f"Error components, {_label(r)}")
+        titles.append(f"Error components, {run_label(r)}")
     heads = titles if title is None else [title] * len(rs)
-    menu = [(_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
+    menu = [(run_label(r), h) for r, h in zip(rs, heads)] if len(rs) > 1 else None
     finish_layout(fig, heads[0], height, groups=groups if menu else None, menu=menu)
     fig.update_yaxes(title_text="e_x, e_y, e_z (m)", exponentformat="power", row=1, col=1)
     fig.update_yaxes(title_text="e_φ (rad)", exponentformat="power", row=2, col=1)
@@ -197,8 +139,8 @@ def manipulability_figure(results, points: int = 1000, title: str | None = None,
     fig = go.Figure()
     for r in rs:
         idx = thin(len(r.t), points)
-        fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=_label(r),
-                                 line=dict(color=_colour(r), width=2.2, dash=_dash(r))))
+        fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.w[idx]), mode="lines", name=run_label(r),
+                                 line=dict(color=run_colour(r), width=2.2, dash=run_dash(r))))
     wmax = max(float(np.max(r.w)) for r in rs)
     finish_layout(fig, title or "Manipulability along the path", height)
     fig.update_xaxes(title_text="t (s)")
@@ -218,23 +160,20 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
     unit = "rad" if i == 3 else "m"
     idx = thin(len(r.t), points)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.x_d[idx, i]), mode="lines", name=f"planned {COMPONENTS[i]}",
+    fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.x_d[idx, i]), mode="lines", name=f"planned {COMPONENTS[i]}",
                              line=dict(color=PALETTE["reference"], width=1.4, dash="dash")), row=1, col=1)
-    fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.x[idx, i]), mode="lines", name=f"{COMPONENTS[i]} · {_label(r)}",
-                             line=dict(color=_colour(r), width=2.0)), row=1, col=1)
+    fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.x[idx, i]), mode="lines", name=f"{COMPONENTS[i]} · {run_label(r)}",
+                             line=dict(color=run_colour(r), width=2.0)), row=1, col=1)
     runs = [r] + ([_results(reference)[0]] if reference is not None else [])
     for rr in runs:
         ii = thin(len(rr.t), points)
-        fig.add_trace(go.Scatter(x=_f(rr.t[ii]), y=_f(rr.q[ii, 1]), mode="lines", name=f"θ2 · {_label(rr)}",
-                                 line=dict(color=_colour(rr), width=1.8, dash="solid" if rr is r else "dash")),
+        fig.add_trace(go.Scatter(x=f32(rr.t[ii]), y=f32(rr.q[ii, 1]), mode="lines", name=f"θ2 · {run_label(rr)}",
+                                 line=dict(color=run_colour(rr), width=1.8, dash="solid" if rr is r else "dash")),
                       row=2, col=1)
     for s in (-1, 1):
         fig.add_hline(y=s * math.pi / 2, line=dict(color="#999999", width=1, dash="dot"), row=2, col=1)
     finish_layout(fig, title or f"The relaxed {COMPONENTS[i]} drifts while θ2 climbs to ±90°", height)
-    fig.update_yaxes(title_text=f"{COMPONENTS[i]} ({unit})", row=1, col=1)
-    fig.update_yaxes(title_text="θ2 (rad)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, (f"{COMPONENTS[i]} ({unit})", "θ2 (rad)"))
 
 
 def transpose_stability_figure(stability: TransposeStability, runs: dict, points: int = 1000,
@@ -247,24 +186,20 @@ def transpose_stability_figure(stability: TransposeStability, runs: dict, points
     dt = 2.0 / st.limit
     idx = thin(len(st.t), points)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(go.Scatter(x=_f(st.t[idx]), y=_f(2.0 / (dt * st.mu[idx])), mode="lines",
+    fig.add_trace(go.Scatter(x=f32(st.t[idx]), y=f32(2.0 / (dt * st.mu[idx])), mode="lines",
                              name="largest stable gain scale", line=dict(color=PALETTE["reference"], width=1.6)),
                   row=1, col=1)
-    dashes = ("solid", "dash", "dot", "dashdot")
     for n, (label, r) in enumerate(runs.items()):
         r = _results(r)[0]
         scale = float(np.median(r.gains["K"] / np.asarray(SEED_K)))
-        line = dict(color=_colour(r), dash=dashes[n % 4], width=2.0)
+        line = dict(color=run_colour(r), dash=DASHES[n % 4], width=2.0)
         fig.add_trace(go.Scatter(x=[st.t[0], st.t[-1]], y=[scale, scale], mode="lines", legendgroup=label,
                                  name=f"{r.method}, K = {scale:.3f} × seed ({label})", line=line), row=1, col=1)
         tt, yy = envelope(r.t, r.position_error, points)
-        fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=f"‖e_p‖, {label}", showlegend=False,
+        fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=f"‖e_p‖, {label}", showlegend=False,
                                  legendgroup=label, line=line), row=2, col=1)
     finish_layout(fig, title or "Transpose: Euler's limit on the gain", height)
-    fig.update_yaxes(title_text="gain scale (× seed K)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, ("gain scale (× seed K)", "‖e_p‖ (m)"), log=(2,))
 
 
 def damping_figure(runs: dict, points: int = 1500, title: str | None = None, height: int = 560) -> go.Figure:
@@ -277,21 +212,17 @@ def damping_figure(runs: dict, points: int = 1500, title: str | None = None, hei
         r = _results(r)[0]
         k = seen.get(r.method, 0)
         seen[r.method] = k + 1
-        line = dict(color=_colour(r), width=2.0, dash=DASHES[k % 4])
+        line = dict(color=run_colour(r), width=2.0, dash=DASHES[k % 4])
         idx = thin(len(r.t), points)
-        fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.qd[idx, 0]), mode="lines", name=label, legendgroup=label,
+        fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.qd[idx, 0]), mode="lines", name=label, legendgroup=label,
                                  line=line), row=1, col=1)
         tt, yy = envelope(r.t, r.position_error, points)
-        fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=label, legendgroup=label, showlegend=False,
+        fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=label, legendgroup=label, showlegend=False,
                                  line=line), row=2, col=1)
-        fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(r.w[idx]), mode="lines", name=label, legendgroup=label,
+        fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.w[idx]), mode="lines", name=label, legendgroup=label,
                                  showlegend=False, line=line), row=3, col=1)
     finish_layout(fig, title or "Near a singularity: exact and damped inverse", height)
-    fig.update_yaxes(title_text="θ1 rate (rad/s)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
-    fig.update_yaxes(title_text="w (m²)", row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
-    return fig
+    return stacked_axes(fig, ("θ1 rate (rad/s)", "‖e_p‖ (m)", "w (m²)"), log=(2,))
 
 
 def second_order_figure(result: ClikResult, points: int = 1000, title: str | None = None,
@@ -304,16 +235,12 @@ def second_order_figure(result: ClikResult, points: int = 1000, title: str | Non
     idx = thin(len(r.t), points)
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05)
     for row, data in ((1, r.q), (2, r.qd), (3, r.qdd)):
-        for j, name in enumerate(_JOINTS):
-            fig.add_trace(go.Scatter(x=_f(r.t[idx]), y=_f(data[idx, j]), mode="lines", name=f"{name} · second order",
+        for j, name in enumerate(JOINT_NAMES):
+            fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(data[idx, j]), mode="lines", name=f"{name} · second order",
                                      legendgroup=name, showlegend=row == 1,
                                      line=dict(color=JOINT_COLOURS[j], width=1.6, dash=DASHES[j])), row=row, col=1)
     finish_layout(fig, title or "Joint reference from the second-order CLIK", height)
-    fig.update_yaxes(title_text="q (rad; m)", row=1, col=1)
-    fig.update_yaxes(title_text="q̇ (rad/s; m/s)", row=2, col=1)
-    fig.update_yaxes(title_text="q̈ (rad/s²; m/s²)", row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
-    return fig
+    return stacked_axes(fig, ("q (rad; m)", "q̇ (rad/s; m/s)", "q̈ (rad/s²; m/s²)"))
 
 
 def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | None = None,
@@ -334,12 +261,12 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
         if e0 == 0 or not r.kept[i]:
             continue
         c = AXIS_COLOURS[i]
-        fig.add_trace(go.Scatter(x=_f(t), y=_f(np.maximum(np.abs(r.e[:n, i]), _FLOOR)), mode="lines",
+        fig.add_trace(go.Scatter(x=f32(t), y=f32(np.maximum(np.abs(r.e[:n, i]), LOG_FLOOR)), mode="lines",
                                  name=f"|e_{name}|", legendgroup=name,
                                  line=dict(color=c, width=2)))
-        fig.add_trace(go.Scatter(x=_f(t), y=_f(e0 * np.exp(-K[i] * t)), mode="lines", legendgroup=name,
+        fig.add_trace(go.Scatter(x=f32(t), y=f32(e0 * np.exp(-K[i] * t)), mode="lines", legendgroup=name,
                                  name="continuous law", showlegend=False, line=dict(color=c, width=1.2, dash="dash")))
-        fig.add_trace(go.Scatter(x=_f(t), y=_f(e0 * (1 - r.dt * K[i]) ** np.arange(n)), mode="markers",
+        fig.add_trace(go.Scatter(x=f32(t), y=f32(e0 * (1 - r.dt * K[i]) ** np.arange(n)), mode="markers",
                                  legendgroup=name, name="Euler", showlegend=False,
                                  marker=dict(color=c, size=6, symbol=symbols[i])))
     # legend keys for the two predictions, drawn once in neutral grey
@@ -348,7 +275,7 @@ def convergence_figure(result: ClikResult, horizon: float = 0.05, title: str | N
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="markers", name="(1 − dt K)^k",
                              marker=dict(color="#777777", size=6, symbol="circle-open")))
     gains = ", ".join(f"{g:g}" for g in K)
-    finish_layout(fig, title or f"Decay of an initial error, {_label(r)}<br>K = diag({gains})", height)
+    finish_layout(fig, title or f"Decay of an initial error, {run_label(r)}<br>K = diag({gains})", height)
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e_i| (m; rad for φ)")
     return fig
@@ -378,9 +305,8 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
             except UnstableError:
                 tt, yy = np.array([]), np.array([])
                 note.append(f"{m}: unstable")
-            fig.add_trace(go.Scatter(x=_f(tt), y=_f(yy), mode="lines", name=METHOD_LABELS.get(m, m),
-                                     visible=False, line=dict(color=PALETTE.get(m, "#000000"), width=1.8,
-                                                              dash=METHOD_DASHES.get(m, "solid"))))
+            fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=run_label(m),
+                                     visible=False, line=dict(color=run_colour(m), width=1.8, dash=run_dash(m))))
         notes.append("<br>".join(note))
     nm = len(methods)
     active = int(np.argmin(np.abs(scales - 1.0)))
@@ -406,7 +332,7 @@ def comparison_rows(results, settle: float = 0.1) -> list[dict]:
     for r in _results(results):
         s = r.summary(settle)
         rows.append({
-            "method": _label(r),
+            "method": run_label(r),
             "max ‖e_p‖ (mm)": s["max_position_error"] * 1e3,
             "RMS ‖e_p‖ (mm)": s["rms_position_error"] * 1e3,
             "max |e_φ| (mrad)": s["max_orientation_error"] * 1e3,

@@ -17,9 +17,11 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..errors import ScaraError
-from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
-from .clik import envelope, thin
-from .kinematics import finish_layout
+from ._common import (
+    AXIS_COLOURS, CONTROLLER_DASHES, CONTROLLER_LABELS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, PALETTE, f32,
+    envelope, run_colour, run_dash, run_label, slider, thin,
+)
+from .layout import finish_layout, stacked_axes
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
@@ -28,57 +30,23 @@ __all__ = [
     "tuning_signal", "tuning_title",
 ]
 
-#: legend names of the controllers (keys: the controllers' ``name``, also the keys of ``PALETTE``)
-CONTROLLER_LABELS = {
-    "robust": "robust",
-    "adaptive": "adaptive (Slotine-Li)",
-    "operational": "operational ID + integral",
-    "operational_noint": "operational ID, no integral",
-    "pd_gravity": "PD + gravity",
-}
-#: one dash style per controller (colours: ``PALETTE``), so that the curves stay apart in greyscale
-CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot", "operational_noint": "dashdot",
-                     "pd_gravity": "longdash"}
-_JOINTS = ("θ1", "θ2", "d3", "θ4")
 _COMPONENTS = ("x", "y", "z", "φ")
-_FLOOR = 1e-12
-
-
-def _f(a):
-    """Plot data as float32: half the page weight, 7 significant digits (ample on screen)."""
-    return np.asarray(a, dtype=np.float32)
-
-
-def _name(r) -> str:
-    return getattr(r, "controller", "") or "controller"
-
-
-def _label(r) -> str:
-    return CONTROLLER_LABELS.get(_name(r), _name(r))
-
-
-def _colour(r) -> str:
-    return PALETTE.get(_name(r), PALETTE["reference"])
-
-
-def _dash(r) -> str:
-    return CONTROLLER_DASHES.get(_name(r), "solid")
 
 
 def _as_dict(results) -> dict:
     if hasattr(results, "tau") and hasattr(results, "e"):
-        return {_label(results): results}
+        return {run_label(results): results}
     if isinstance(results, dict):
         out = dict(results)
     else:
-        out = {_label(r): r for r in results}
+        out = {run_label(r): r for r in results}
     if not out or not all(hasattr(r, "tau") and hasattr(r, "e") for r in out.values()):
         raise ScaraError("expected a SimulationResult or a list/dict of SimulationResult objects")
     return out
 
 
 def _line(x, y, name, colour, width=1.5, dash=None, showlegend=True, legendgroup=None, **kw):
-    return go.Scatter(x=_f(x), y=_f(y), mode="lines", name=name, showlegend=showlegend, legendgroup=legendgroup,
+    return go.Scatter(x=f32(x), y=f32(y), mode="lines", name=name, showlegend=showlegend, legendgroup=legendgroup,
                       line=dict(color=colour, width=width, dash=dash), **kw)
 
 
@@ -98,12 +66,12 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
         idx = np.unique(np.concatenate([np.arange(min(len(r.t), 40)), idx]))
         start = len(fig.data)
         for j in range(4):
-            style = dict(colour=JOINT_COLOURS[j], dash=DASHES[j], width=1.6, legendgroup=_JOINTS[j])
-            fig.add_trace(_line(r.t[idx], r.q[idx, j], f"{_JOINTS[j]} · {label}", showlegend=True, **style),
+            style = dict(colour=JOINT_COLOURS[j], dash=DASHES[j], width=1.6, legendgroup=JOINT_NAMES[j])
+            fig.add_trace(_line(r.t[idx], r.q[idx, j], f"{JOINT_NAMES[j]} · {label}", showlegend=True, **style),
                           row=2 if j == 2 else 1, col=1)
-            fig.add_trace(_line(r.t[idx], r.qd[idx, j], f"{_JOINTS[j]} rate · {label}", showlegend=False, **style),
+            fig.add_trace(_line(r.t[idx], r.qd[idx, j], f"{JOINT_NAMES[j]} rate · {label}", showlegend=False, **style),
                           row=3, col=1)
-            fig.add_trace(_line(r.t[idx], r.qdd[idx, j], f"{_JOINTS[j]} acceleration · {label}", showlegend=False,
+            fig.add_trace(_line(r.t[idx], r.qdd[idx, j], f"{JOINT_NAMES[j]} acceleration · {label}", showlegend=False,
                                 **style), row=4, col=1)
         groups.append(list(range(start, len(fig.data))))
         menu.append((label, f"{head}<br>{label}"))
@@ -120,11 +88,8 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
     fig.update_yaxes(range=ranges[0], row=4, col=1)
     for b, rg, note in zip(fig.layout.updatemenus[0].buttons, ranges, notes):
         b.args[1].update({"yaxis4.range": rg, "annotations[0].text": note})
-    for row, text in enumerate(("θ1, θ2, θ4 (rad)", "d3 (m)", "velocity<br>(rad/s, m/s)",
-                                "acceleration<br>(rad/s², m/s²)"), start=1):
-        fig.update_yaxes(title_text=text, row=row, col=1)
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    return fig
+    return stacked_axes(fig, ("θ1, θ2, θ4 (rad)", "d3 (m)", "velocity<br>(rad/s, m/s)",
+                              "acceleration<br>(rad/s², m/s²)"))
 
 
 def operational_error_figure(results, points: int = 600, title: str | None = None, height: int = 600) -> go.Figure:
@@ -142,14 +107,11 @@ def operational_error_figure(results, points: int = 600, title: str | None = Non
             fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, i], f"e_{_COMPONENTS[i]}", AXIS_COLOURS[i],
                                 dash=DASHES[i]), row=1, col=1)
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, "‖e_p‖", _colour(r), width=2, dash=_dash(r)), row=2, col=1)
+        fig.add_trace(_line(tt, yy, "‖e_p‖", run_colour(r), width=2, dash=run_dash(r)), row=2, col=1)
         groups.append(list(range(start, len(fig.data))))
         menu.append((label, f"{head}<br>{label}"))
     finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
-    fig.update_yaxes(title_text="e_x, e_y, e_z (mm)<br>e_φ (mrad)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, ("e_x, e_y, e_z (mm)<br>e_φ (mrad)", "‖e_p‖ (m)"), log=(2,))
 
 
 def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int = 460,
@@ -161,7 +123,7 @@ def error_norm_figure(results, points: int = 1000, title: str | None = None, hei
     fig = go.Figure()
     for label, r in runs.items():
         tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, label, _colour(r), width=2, dash=_dash(r)))
+        fig.add_trace(_line(tt, yy, label, run_colour(r), width=2, dash=run_dash(r)))
     if settle:
         fig.add_vline(x=settle, line=dict(color="#777777", dash="dot", width=1))
     finish_layout(fig, title or "Position error of each controller<br>(5 kg payload, unknown to them)", height)
@@ -179,13 +141,10 @@ def torque_figure(results, points: int = 500, title: str | None = None, height: 
     for label, r in runs.items():
         idx = thin(len(r.t), points)
         for j in range(4):
-            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, _colour(r), width=1.6, legendgroup=label,
-                                showlegend=j == 0, dash=_dash(r)), row=j + 1, col=1)
+            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, run_colour(r), width=1.6, legendgroup=label,
+                                showlegend=j == 0, dash=run_dash(r)), row=j + 1, col=1)
     finish_layout(fig, title or "Joint torques and the quill's force", height)
-    for j in range(4):
-        fig.update_yaxes(title_text=names[j], row=j + 1, col=1)
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
-    return fig
+    return stacked_axes(fig, names)
 
 
 def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, points: int = 1000,
@@ -199,7 +158,7 @@ def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, poin
     fig = make_subplots(rows=2, cols=1, vertical_spacing=0.16, row_heights=[0.55, 0.45])
     first = t <= horizon + 1e-12
     idx = np.flatnonzero(first)[thin(int(first.sum()), points)]
-    fig.add_trace(_line(t[idx], est[idx], f"m̂_L · {_label(result)}", _colour(result), width=2.2, dash=_dash(result)),
+    fig.add_trace(_line(t[idx], est[idx], f"m̂_L · {run_label(result)}", run_colour(result), width=2.2, dash=run_dash(result)),
                   row=1, col=1)
     fig.add_trace(_line([0, horizon], [true_mass, true_mass], f"true payload {true_mass:g} kg",
                         PALETTE["reference"], dash="dot", width=1.4), row=1, col=1)
@@ -226,7 +185,7 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
     tt, zz = envelope(t[idx], z, points)
     sub = idx[thin(len(idx), points)]
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(_line(tt, zz, "‖z‖", _colour(result), width=2, dash=_dash(result)),
+    fig.add_trace(_line(tt, zz, "‖z‖", run_colour(result), width=2, dash=run_dash(result)),
                   row=1, col=1)
     fig.add_trace(_line([t[idx[0]], t[idx[-1]]], [epsilon, epsilon], f"ε = {epsilon:g}", PALETTE["reference"],
                         dash="dot", width=1.4), row=1, col=1)
@@ -235,7 +194,7 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
                             dash=DASHES[j]), row=2, col=1)
     finish_layout(fig, title or "Robust control: ‖z‖ and the term w", height)
     # at least two decades on the log axis, so that it is labelled in powers of ten
-    lo = np.log10(max(min(float(zz.min()), epsilon), _FLOOR))
+    lo = np.log10(max(min(float(zz.min()), epsilon), LOG_FLOOR))
     hi = np.log10(max(float(zz.max()), epsilon))
     mid, half = 0.5 * (lo + hi), max(0.5 * (hi - lo) + 0.2, 1.0)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (rad/s, m/s)", range=[mid - half, mid + half],
@@ -265,7 +224,7 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
             # solid lines: a dash pattern on a torque that switches every sample would only add noise
             fig.add_trace(_line(t, r.tau[sel, j], f"τ{j + 1}", JOINT_COLOURS[j], width=1.3,
                                 visible=n == 0, legendgroup=f"tau{j}"), row=1, col=1)
-        fig.add_trace(_line(t, np.maximum(r.z_norm[sel], _FLOOR), "‖z‖ · robust", PALETTE["robust"], width=1.8,
+        fig.add_trace(_line(t, np.maximum(r.z_norm[sel], LOG_FLOOR), "‖z‖ · robust", PALETTE["robust"], width=1.8,
                             visible=n == 0), row=2, col=1)
         fig.add_trace(_line([t[0], t[-1]], [eps, eps], "layer ε", PALETTE["reference"], dash="dot", width=1.4,
                             visible=n == 0), row=2, col=1)
@@ -280,10 +239,7 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
              for n, eps in enumerate(eps_list)]
     finish_layout(fig, head(eps_list[0]), height, groups=[list(range(per))], bottom=120)
     fig.update_layout(sliders=[slider(steps, "ε = ")])
-    fig.update_yaxes(title_text="τ (N m)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖z‖ (rad/s, m/s)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, ("τ (N m)", "‖z‖ (rad/s, m/s)"), log=(2,))
 
 
 def steady_state_figure(with_integral, without_integral, predicted: float, integral_target: float,
@@ -294,22 +250,19 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in (without_integral, with_integral):
         idx = thin(len(r.t), points)
-        fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], _label(r), _colour(r), width=2.2, dash=_dash(r)),
+        fig.add_trace(_line(r.t[idx], 1e3 * r.e[idx, 2], run_label(r), run_colour(r), width=2.2, dash=run_dash(r)),
                       row=1, col=1)
     t_end = with_integral.t[-1]
     fig.add_trace(_line([0, t_end], [1e3 * predicted] * 2, "theory", PALETTE["reference"],
                         dash="dot", width=1.2), row=1, col=1)
     idx = thin(len(with_integral.t), points)
     fig.add_trace(_line(with_integral.t[idx], with_integral.integral_action_z[idx],
-                        f"K_I s_z · {_label(with_integral)}", _colour(with_integral), width=2.2,
-                        dash=_dash(with_integral), showlegend=False), row=2, col=1)
+                        f"K_I s_z · {run_label(with_integral)}", run_colour(with_integral), width=2.2,
+                        dash=run_dash(with_integral), showlegend=False), row=2, col=1)
     fig.add_trace(_line([0, t_end], [integral_target] * 2, "m_L g0 / B̂33", PALETTE["reference"], dash="dot",
                         width=1.2), row=2, col=1)
     finish_layout(fig, title or "Steady-state error and integral action", height)
-    fig.update_yaxes(title_text="e_z (mm)", row=1, col=1)
-    fig.update_yaxes(title_text="K_I s_z (m/s²)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    return fig
+    return stacked_axes(fig, ("e_z (mm)", "K_I s_z (m/s²)"))
 
 
 def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int = 480,
@@ -322,11 +275,10 @@ def payload_sweep_figure(masses, errors: dict, title: str | None = None, height:
         vals = np.asarray(vals, dtype=float)
         if vals.shape != masses.shape:
             raise ScaraError(f"errors[{name!r}] has {vals.size} values for {masses.size} masses")
-        fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, _FLOOR), mode="lines+markers",
-                                 name=CONTROLLER_LABELS.get(name, name),
+        fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, LOG_FLOOR), mode="lines+markers",
+                                 name=run_label(name),
                                  marker=dict(size=8, symbol=("circle", "square", "diamond", "triangle-up")[n % 4]),
-                                 line=dict(color=PALETTE.get(name, PALETTE["reference"]), width=2,
-                                           dash=CONTROLLER_DASHES.get(name, "solid"))))
+                                 line=dict(color=run_colour(name), width=2, dash=run_dash(name))))
     finish_layout(fig, title or "Tracking error against the payload", height)
     fig.update_yaxes(type="log", exponentformat="power", title_text=ylabel)
     fig.update_xaxes(title_text="payload m_L (kg)")
@@ -349,7 +301,7 @@ def tuning_series(result, points: int = 1200) -> list:
         out.append(envelope(result.t, sig["z_norm"], points))
     else:
         out.append((t, 1e3 * result.e[idx, 2]))
-    return [(_f(x), _f(y)) for x, y in out]
+    return [(f32(x), f32(y)) for x, y in out]
 
 
 def tuning_signal(result) -> tuple:
@@ -366,7 +318,7 @@ def tuning_title(result, summary: dict, extra: str = "") -> str:
     """The title of :func:`tuning_figure`: the run's figures (error after 1 s and at rest, peak quill force,
     chattering) and ``extra``."""
     s = summary
-    head = (f"{_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
+    head = (f"{run_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
             f"{1e3 * s['final_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
     return head + (f"<br>{extra}" if extra else "")
 
@@ -378,7 +330,7 @@ def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, he
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
                         specs=[[{}], [{"secondary_y": True}], [{}]])
     series = tuning_series(result, points)
-    fig.add_trace(_line(*series[0], _label(result), _colour(result), width=1.8), row=1, col=1)
+    fig.add_trace(_line(*series[0], run_label(result), run_colour(result), width=1.8), row=1, col=1)
     fig.add_trace(_line(*series[1], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
     for (x, y), j in zip(series[2:5], (0, 1, 3)):
         fig.add_trace(_line(x, y, f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1), row=2, col=1, secondary_y=True)

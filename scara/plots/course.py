@@ -7,15 +7,12 @@ import plotly.graph_objects as go
 
 from ..kinematics import _params
 from ..manipulability import manipulability
-from ._common import PALETTE, slider
-from .kinematics import arm_geometry, finish_layout
+from ._common import PALETTE, as_list, slider
+from .kinematics import arm_geometry
+from .layout import finish_layout
 from .trajectory import _waypoint_traces, decimate
 
 __all__ = ["course_figure"]
-
-
-def _r(a, digits=4):
-    return np.round(np.asarray(a, dtype=float), digits).tolist()
 
 
 def _box(points: np.ndarray, margin: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
@@ -43,9 +40,9 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
 
     fig = go.Figure()
     fig.add_trace(go.Scatter3d(
-        x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), z=_r(traj.x[k, 2]), mode="lines",
+        x=as_list(traj.x[k, 0]), y=as_list(traj.x[k, 1]), z=as_list(traj.x[k, 2]), mode="lines",
         name="path (Ch. 3)",
-        line=dict(width=6, color=_r(w, 4), colorscale="Viridis", cmin=0.0, cmax=p.a1 * p.a2,
+        line=dict(width=6, color=as_list(w, 4), colorscale="Viridis", cmin=0.0, cmax=p.a1 * p.a2,
                   colorbar=dict(title=dict(text="w (m²)<br>Ch. 2"), len=0.55, thickness=14, x=1.0)),
         hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>reference path</extra>"))
     for tr in _waypoint_traces(traj, dims=3, text=False):
@@ -58,7 +55,8 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
                                name="covered", line=dict(color=PALETTE["reference"], width=10),
                                opacity=0.35, hoverinfo="skip", showlegend=False))
     arm_index = len(fig.data)
-    fig.add_trace(go.Scatter3d(x=_r(arms[0][:, 0]), y=_r(arms[0][:, 1]), z=_r(arms[0][:, 2]), mode="lines+markers",
+    fig.add_trace(go.Scatter3d(x=as_list(arms[0][:, 0]), y=as_list(arms[0][:, 1]), z=as_list(arms[0][:, 2]),
+                               mode="lines+markers",
                                name="arm (Ch. 1, 4)",
                                line=dict(color=PALETTE["arm"], width=9), marker=dict(size=4, color=PALETTE["arm"]),
                                hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>arm</extra>"))
@@ -67,14 +65,15 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
         covered = kt[kt <= i]
         trail = traj.x[np.r_[covered, i]]
         step_list.append(dict(label=f"{t:.0f}", method="update",
-                              args=[{"x": [_r(trail[:, 0]), _r(a[:, 0])], "y": [_r(trail[:, 1]), _r(a[:, 1])],
-                                     "z": [_r(trail[:, 2]), _r(a[:, 2])]},
+                              args=[{"x": [as_list(trail[:, 0]), as_list(a[:, 0])],
+                                     "y": [as_list(trail[:, 1]), as_list(a[:, 1])],
+                                     "z": [as_list(trail[:, 2]), as_list(a[:, 2])]},
                                     {"title.text": _title(t, traj, i)}, [trail_index, arm_index]]))
     lo, hi = _box(np.vstack([traj.x[k, :3], *arms, [[0.0, 0.0, 0.0]]]))
     span = hi - lo
-    scene = dict(xaxis=dict(title="x (m)", range=_r([lo[0], hi[0]], 3)),
-                 yaxis=dict(title="y (m)", range=_r([lo[1], hi[1]], 3)),
-                 zaxis=dict(title="z (m)", range=_r([0.0, hi[2]], 3)),
+    scene = dict(xaxis=dict(title="x (m)", range=as_list([lo[0], hi[0]], 3)),
+                 yaxis=dict(title="y (m)", range=as_list([lo[1], hi[1]], 3)),
+                 zaxis=dict(title="z (m)", range=as_list([0.0, hi[2]], 3)),
                  aspectmode="manual",
                  aspectratio=dict(x=1.1, y=1.1 * span[1] / span[0], z=0.75),
                  camera=dict(eye=dict(x=1.1, y=-1.7, z=0.8), center=dict(x=0.0, y=0.0, z=-0.1)))

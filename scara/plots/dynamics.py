@@ -11,12 +11,12 @@ from plotly.subplots import make_subplots
 from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError
 from ..kinematics import _params
-from ._common import DASHES, JOINT_COLOURS, slider
-from .kinematics import finish_layout
+from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, f32, slider, thin
+from .layout import finish_layout, stacked_axes
 
 __all__ = [
-    "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "decimate", "torque_share_figure", "torque_terms_figure",
-    "payload_torque_figure", "payload_slider_figure", "energy_figure", "inertia_figure",
+    "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "torque_share_figure",
+    "torque_terms_figure", "payload_torque_figure", "payload_slider_figure", "energy_figure", "inertia_figure",
 ]
 
 #: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
@@ -27,28 +27,12 @@ TERM_COLOURS = {"links": "#0072B2", "rotors": "#E69F00", "payload": "#D55E00", "
 #: friction, the quill's weight)
 TERM_LABELS = {"links": "link inertia", "rotors": "rotors", "payload": "payload", "coriolis": "Coriolis",
                "friction": "friction", "gravity": "gravity"}
-#: generalised-force unit of each joint
-JOINT_UNITS = ("N m", "N m", "N", "N m")
 _JOINT_NAMES = ("joint 1 (θ1)", "joint 2 (θ2)", "joint 3 (d3)", "joint 4 (θ4)")
 _JOINT_SHORT = ("joint 1", "joint 2", "joint 3", "joint 4")
 #: a dash style and a bar hatch per term, so that the terms stay apart in greyscale
 TERM_DASHES = {"links": "solid", "rotors": "dash", "payload": "dot", "coriolis": "dashdot", "friction": "longdash",
                "gravity": "solid"}
 TERM_PATTERNS = {"links": "", "rotors": "/", "payload": ".", "coriolis": "x", "friction": "-", "gravity": ""}
-
-
-def decimate(n: int, target: int = 2000) -> np.ndarray:
-    """Indices of about ``target`` evenly spaced samples out of ``n`` (always keeping the last one)."""
-    if n <= 0:
-        raise ScaraError(f"cannot decimate {n} samples")
-    step = max(1, int(np.ceil(n / target)))
-    idx = np.arange(0, n, step)
-    return idx if idx[-1] == n - 1 else np.append(idx, n - 1)
-
-
-def _f32(a):
-    """Float32 copy for plotting: halves the figure's payload; 7 significant digits are plenty on screen."""
-    return np.asarray(a, dtype=np.float32)
 
 
 def _rms(a):
@@ -83,13 +67,13 @@ def torque_terms_figure(t, breakdown: dict, target: int = 1500,
     time: a dropdown (works on a static page) picks the joint, joint 1 first. Each term keeps its colour and
     gets its own dash style."""
     t = np.asarray(t)
-    idx = decimate(len(t), target)
+    idx = thin(len(t), target)
     fig = go.Figure()
     n_terms = len(TORQUE_TERMS)
     for j in range(4):
         for n, k in enumerate(TORQUE_TERMS):
             y = np.asarray(breakdown[k])[idx, j]
-            fig.add_scatter(x=_f32(t[idx]), y=_f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k,
+            fig.add_scatter(x=f32(t[idx]), y=f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k,
                             visible=(j == 0), line=dict(color=TERM_COLOURS[k], width=1.8, dash=TERM_DASHES[k]))
     groups = [list(range(j * n_terms, (j + 1) * n_terms)) for j in range(4)]
     menu = [(_JOINT_NAMES[j], title, {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"}) for j in range(4)]
@@ -106,20 +90,16 @@ def payload_torque_figure(t, torques: dict, target: int = 1500,
     series): the revolute joints 1, 2, 4 on top (N m, colour per joint), the quill's force below (N); one dash
     style per case."""
     t = np.asarray(t)
-    idx = decimate(len(t), target)
+    idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
-    dashes = ["solid", "dash", "dot", "dashdot"]
     for c, (label, tau) in enumerate(torques.items()):
         tau = np.asarray(tau)
         for j in range(4):
-            fig.add_scatter(x=_f32(t[idx]), y=_f32(tau[idx, j]), mode="lines", name=f"τ{j + 1}, {label}",
-                            legendgroup=label, line=dict(color=JOINT_COLOURS[j], dash=dashes[c % 4], width=1.6),
+            fig.add_scatter(x=f32(t[idx]), y=f32(tau[idx, j]), mode="lines", name=f"τ{j + 1}, {label}",
+                            legendgroup=label, line=dict(color=JOINT_COLOURS[j], dash=DASHES[c % 4], width=1.6),
                             row=2 if j == 2 else 1, col=1)
-    fig.update_yaxes(title_text="τ1, τ2, τ4 (N m)", row=1, col=1)
-    fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    finish_layout(fig, title, height)
-    return fig
+    stacked_axes(fig, ("τ1, τ2, τ4 (N m)", "τ3 (N)"))
+    return finish_layout(fig, title, height)
 
 
 def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
@@ -133,7 +113,7 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
     if not torques_by_mass:
         raise ScaraError("torques_by_mass is empty: give at least one payload mass")
     t = np.asarray(t)
-    idx = decimate(len(t), target)
+    idx = thin(len(t), target)
     masses = list(torques_by_mass)
     active = 0 if active is None else int(active)
     if not 0 <= active < len(masses):
@@ -145,10 +125,10 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
     base = np.asarray(torques_by_mass[base_m])
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
     for j in range(4):
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(shown[idx, j]), mode="lines", name=f"τ{j + 1}",
+        fig.add_scatter(x=f32(t[idx]), y=f32(shown[idx, j]), mode="lines", name=f"τ{j + 1}",
                         line=dict(color=JOINT_COLOURS[j], width=2.0, dash=DASHES[j]), row=2 if j == 2 else 1, col=1)
     for j in range(4):
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(base[idx, j]), mode="lines", name=f"τ at {base_m:g} kg",
+        fig.add_scatter(x=f32(t[idx]), y=f32(base[idx, j]), mode="lines", name=f"τ at {base_m:g} kg",
                         legendgroup="baseline", showlegend=(j == 0), hoverinfo="skip",
                         line=dict(color="#999999", width=1.0), row=2 if j == 2 else 1, col=1)
     for row, joints in ((1, (0, 1, 3)), (2, (2,))):
@@ -156,8 +136,7 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
         hi = max(float(np.max(np.asarray(v)[:, joints])) for v in torques_by_mass.values())
         pad = 0.05 * (hi - lo) + 1e-6
         fig.update_yaxes(range=[lo - pad, hi + pad], row=row, col=1)
-    fig.update_yaxes(title_text="τ1, τ2, τ4 (N m)", row=1, col=1)
-    fig.update_yaxes(title_text="τ3 (N)", row=2, col=1)
+    stacked_axes(fig, ("τ1, τ2, τ4 (N m)", "τ3 (N)"))
 
     def heading(m, tau):
         return f"{title}<br>payload {m:g} kg, largest |τ3| {np.abs(tau[:, 2]).max():.1f} N"
@@ -168,10 +147,8 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
         steps.append(dict(label=f"{m:g}", method="update",
                           args=[{"y": [[float(f"{v:.4g}") for v in tau[idx, j]] for j in range(4)]},
                                 {"title.text": heading(m, tau)}, [0, 1, 2, 3]]))
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    finish_layout(fig, heading(masses[active], shown), height, bottom=130,
-                  sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
-    return fig
+    return finish_layout(fig, heading(masses[active], shown), height, bottom=130,
+                         sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
 
 
 def energy_figure(t, energy: dict, title: str = "Energy of the released arm", target: int = 1000,
@@ -180,7 +157,7 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
     dissipated by friction and the work done by the torques; bottom: the balance residual
     ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`."""
     t = np.asarray(t)
-    idx = decimate(len(t), target)
+    idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.7, 0.3], vertical_spacing=0.1)
     T, U, E = (np.asarray(energy[k]) for k in ("kinetic", "potential", "total"))
     series = [("kinetic T", T - T[0], "#0072B2", "solid"),
@@ -191,16 +168,14 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
         series.append(("input W_in", np.asarray(energy["input_work"]), "#CC79A7", "dashdot"))
     for name, y, c, d in series:
         width = 3.2 if name.startswith("total") else 2
-        fig.add_scatter(x=_f32(t[idx]), y=_f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=width),
+        fig.add_scatter(x=f32(t[idx]), y=f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=width),
                         row=1, col=1)
-    fig.add_scatter(x=_f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines",
+    fig.add_scatter(x=f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines",
                     name="balance residual E − E(0) − W_in + W_f", showlegend=False,
                     line=dict(color="#999999", width=1.5), row=2, col=1)
-    fig.update_yaxes(title_text="energy (J)", row=1, col=1)
-    fig.update_yaxes(title_text="E − E(0) − W_in + W_f (J)", exponentformat="e", row=2, col=1)
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    finish_layout(fig, title, height)
-    return fig
+    stacked_axes(fig, ("energy (J)", "E − E(0) − W_in + W_f (J)"))
+    fig.update_yaxes(exponentformat="e", row=2, col=1)
+    return finish_layout(fig, title, height)
 
 
 def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:

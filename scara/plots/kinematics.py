@@ -14,7 +14,9 @@ import plotly.graph_objects as go
 
 from ..errors import ScaraError, as_array, as_vector
 from ..kinematics import _params, ikine, jacobian, link_frames, pose
-from ._common import AXIS_COLOURS, DASHES, PALETTE, base_layout, slider
+from ._common import AXIS_COLOURS, DASHES, JOINT_NAMES, PALETTE, as_list, slider
+from .layout import finish_layout
+# still importable from here, where they lived before scara.plots.layout (the figure rules of tests/ use them)
 
 __all__ = [
     "FRAME_NAMES",
@@ -23,12 +25,9 @@ __all__ = [
     "arm_figure",
     "joint_slider_figure",
     "top_view_arm",
+    "top_axes",
     "inverse_kinematics_figure",
     "determinant_figure",
-    "finish_layout",
-    "legend_entries",
-    "legend_rows",
-    "PHONE_PLOT_WIDTH",
 ]
 
 #: names of the frames drawn by :func:`arm_figure`: the base frame, then the six of :func:`link_frames`
@@ -36,13 +35,7 @@ FRAME_NAMES = ("b", "0", "1", "2", "3", "4", "e")
 #: one colour and dash per elbow solution (+1: sin theta2 >= 0, -1: sin theta2 <= 0), told apart in greyscale too
 ELBOW_COLOURS = {+1: "#0072B2", -1: "#E69F00"}
 ELBOW_DASHES = {+1: "solid", -1: "dash"}
-_JOINT_LABELS = ("θ1", "θ2", "d3", "θ4")
 _TRIAD_NAMES = ("x axes", "y axes", "z axes")
-
-
-def _as_list(values, digits: int = 4) -> list:
-    """A plain list for plotly (NaN becomes ``None``, a gap in a line), rounded to keep pages light."""
-    return [None if not np.isfinite(v) else round(float(v), digits) for v in np.ravel(values)]
 
 
 def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
@@ -83,120 +76,12 @@ def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
     return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels}
 
 
-#: plot-area width (px) left on a 360-px phone page between the axis margins (227 to 232 px measured in the built
-#: book); legends are sized for it
-PHONE_PLOT_WIDTH = 230
-_TITLE_SIZE = 15
-_LEGEND_SIZE = 12
-
-
-def legend_entries(fig: go.Figure, visible_only: bool = True) -> list[str]:
-    """Names the legend of ``fig`` lists (traces with a name whose ``showlegend`` is not False; heat maps and
-    text-only traces only when asked). With ``visible_only`` (the default), traces hidden at first
-    (``visible=False``, shown later by a slider step or a dropdown) are left out: the legend as the page opens."""
-    names = []
-    for t in fig.data:
-        if not t.name or t.showlegend is False or (visible_only and t.visible is False):
-            continue
-        if t.type in ("heatmap", "contour", "surface") and t.showlegend is not True:
-            continue
-        if getattr(t, "mode", None) == "text" and t.showlegend is not True:
-            continue
-        names.append(t.name)
-    return names
-
-
-def _text_width(text: str, font_size: float = _LEGEND_SIZE) -> float:
-    """Width (px) of ``text`` in plotly's default sans-serif font, from widths measured in Chromium at 12 px
-    (an estimate that is never short by more than a pixel and long by at most 9 px on the book's legends)."""
-    w = 0.0
-    for ch in text:
-        if ch in "mwMW":
-            w += 9.4
-        elif ch in "ijlI|.,:;!'":
-            w += 3.2
-        elif ch in "frt()[]- ":
-            w += 4.2
-        elif ch.isupper() or ch.isdigit():
-            w += 7.0
-        else:
-            w += 6.4
-    return w * font_size / 12
-
-
-def legend_rows(names, plot_width: float = PHONE_PLOT_WIDTH, font_size: float = _LEGEND_SIZE) -> int:
-    """Rows a horizontal plotly legend with entries ``names`` takes in a plot area ``plot_width`` px wide.
-
-    Plotly packs the entries in one row when they fit, else in equal columns as wide as the widest entry
-    (seen in Chromium); an entry is 44 px of symbol and padding plus its text."""
-    if not names:
-        return 0
-    widths = [44 + _text_width(n, font_size) for n in names]
-    if sum(widths) <= plot_width:
-        return 1
-    per_row = max(1, int(plot_width // max(widths)))
-    return -(-len(names) // per_row)
-
-
-#: room (px) for a dropdown between the legend and the plot
-_MENU_PX = 36
-
-
-def finish_layout(fig: go.Figure, title: str | None, height: int, subplot_titles: bool = False,
-                  groups: list | None = None, menu: list | None = None, bottom: int | None = None,
-                  **kw) -> go.Figure:
-    """Apply the book's layout to a finished ``fig``: a short title (lines split with ``<br>``) at the top, the
-    legend under it, and room reserved for the legend as it wraps on a phone-width page, so that neither the
-    title, the legend nor the plot overlap at any width. Returns ``fig``.
-
-    ``groups`` (trace indices per group) counts the legend rows on the traces one group shows; with ``menu``
-    (a list of ``(label, title)`` or ``(label, title, relayout)``, one per group) a dropdown between the legend
-    and the plot shows one group at a time (plotly ``updatemenus``: it works on a static page). ``bottom`` sets the bottom margin (px);
-    ``kw`` goes to :func:`base_layout`.
-    """
-    if groups:
-        rows = max(legend_rows([fig.data[k].name for k in g if fig.data[k].name and fig.data[k].showlegend is not False])
-                   for g in groups)
-    else:
-        rows = legend_rows(legend_entries(fig))
-    if menu:
-        title = menu[0][1]
-    lines = 0 if not title else title.count("<br>") + 1
-    title_px = 22 * lines
-    top = 14 + title_px + 21 * rows + (_MENU_PX if menu else 0) + (26 if subplot_titles else 8)
-    lay = base_layout(None, height, **kw)
-    if title:
-        # plotly anchors a title of several lines about one line too high ("top" is not the first line's top):
-        # lower it so that the first line is not cut off at the top of the figure
-        lay["title"] = dict(text=title, x=0.0, xanchor="left", y=1.0 - (10 + 18 * (lines - 1)) / height,
-                            yanchor="top", yref="container", font=dict(size=_TITLE_SIZE), pad=dict(l=8))
-    lay["legend"] = dict(orientation="h", xanchor="left", x=0.0, yref="container", yanchor="top",
-                         y=1.0 - (12 + title_px) / height, font=dict(size=_LEGEND_SIZE), tracegroupgap=0)
-    lay["margin"] = dict(lay["margin"], t=top) if bottom is None else dict(lay["margin"], t=top, b=bottom)
-    lay["showlegend"] = rows > 0
-    fig.update_layout(**lay)
-    if menu:
-        n = len(fig.data)
-        buttons = []
-        for group, entry in zip(groups, menu):
-            label, head, extra = (tuple(entry) + ({},))[:3]
-            vis = [k in group for k in range(n)]
-            buttons.append(dict(label=label, method="update", args=[{"visible": vis}, {"title.text": head, **extra}]))
-        for k in range(n):
-            fig.data[k].visible = k in groups[0]
-        plot_px = height - top - lay["margin"]["b"]
-        fig.update_layout(updatemenus=[dict(buttons=buttons, direction="down", x=1.0, xanchor="right",
-                                            y=1.0 + 6 / plot_px, yanchor="bottom", showactive=True, active=0,
-                                            pad=dict(t=0, b=0), font=dict(size=12))])
-    return fig
-
-
 def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
     g = arm_geometry(q, p, triad)
     colour = colour or PALETTE["arm"]
     arm, ee = g["arm"], g["arm"][-1]
     traces = [
-        go.Scatter3d(x=_as_list(arm[:, 0]), y=_as_list(arm[:, 1]), z=_as_list(arm[:, 2]), mode="lines+markers",
+        go.Scatter3d(x=as_list(arm[:, 0]), y=as_list(arm[:, 1]), z=as_list(arm[:, 2]), mode="lines+markers",
                      name=name, line=dict(color=colour, width=9), marker=dict(size=4, color=colour),
                      hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>" + name + "</extra>"),
         go.Scatter3d(x=[round(ee[0], 4)], y=[round(ee[1], 4)], z=[round(ee[2], 4)], mode="markers",
@@ -206,11 +91,11 @@ def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
     if frames:
         for k in range(3):
             s = g["triads"][k]
-            traces.append(go.Scatter3d(x=_as_list(s[:, 0]), y=_as_list(s[:, 1]), z=_as_list(s[:, 2]), mode="lines",
+            traces.append(go.Scatter3d(x=as_list(s[:, 0]), y=as_list(s[:, 1]), z=as_list(s[:, 2]), mode="lines",
                                        name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5, dash=DASHES[k]),
                                        hoverinfo="skip"))
         o = g["origins"]
-        traces.append(go.Scatter3d(x=_as_list(o[:, 0] + 0.03), y=_as_list(o[:, 1] + 0.03), z=_as_list(o[:, 2] + 0.04),
+        traces.append(go.Scatter3d(x=as_list(o[:, 0] + 0.03), y=as_list(o[:, 1] + 0.03), z=as_list(o[:, 2] + 0.04),
                                    mode="text", text=g["labels"], name="frame names", showlegend=False,
                                    textfont=dict(size=12, color="#333333"), hoverinfo="skip"))
     return traces
@@ -243,7 +128,7 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str |
     """3-D view of the arm at ``q`` with the triads of its DH frames (x, y, z axes coloured as
     ``AXIS_COLOURS`` and dashed as ``DASHES``), frame names, and the end-effector position.
 
-    ``q`` (4,) in rad, rad, m, rad. The title states ``x_e`` (SPEC section 2) and ``det J_A``.
+    ``q`` (4,) in rad, rad, m, rad. The title states ``x_e`` (equation ``eq-kin-xe`` of chapter 1) and ``det J_A``.
 
     >>> fig = arm_figure([0.3, -1.2, 0.4, 0.1])
     >>> [t.name for t in fig.data][:2]
@@ -296,9 +181,9 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
             label=label, method="update",
             args=[{"x": [t.x for t in tr], "y": [t.y for t in tr], "z": [t.z for t in tr],
                    "text": [t.text for t in tr]},
-                  {"title.text": _pose_text(q, p, f"{_JOINT_LABELS[joint]} = {label}{sep}{unit}: ")},
+                  {"title.text": _pose_text(q, p, f"{JOINT_NAMES[joint]} = {label}{sep}{unit}: ")},
                   list(range(len(tr)))]))
-    name = _JOINT_LABELS[joint]
+    name = JOINT_NAMES[joint]
     return finish_layout(fig, _pose_text(qs[active], p, f"{name} = {steps[active]['label']}{sep}{unit}: "), height,
                          scene=_scene(p), uirevision="arm",
                          sliders=[slider(steps, prefix=f"{name} ({unit}) = ", active=active)])
@@ -311,7 +196,7 @@ def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegen
     origins = link_frames(q, p)[:, :3, 3]
     pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
     colour = colour or PALETTE["arm"]
-    return go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="lines+markers", name=name,
+    return go.Scatter(x=as_list(pts[:, 0]), y=as_list(pts[:, 1]), mode="lines+markers", name=name,
                       line=dict(color=colour, width=width, dash=dash), marker=dict(size=[9, 7, 7], color=colour),
                       opacity=opacity, showlegend=showlegend,
                       hovertemplate="(%{x:.3f}, %{y:.3f}) m<extra>" + name + "</extra>")
@@ -322,11 +207,12 @@ def _circle(radius, n=145):
     return radius * np.cos(th), radius * np.sin(th)
 
 
-def _planar_axes(fig, p, margin=0.15):
-    """Equal-scale x-y axes (m) covering the workspace disc."""
+def top_axes(fig, p, margin: float = 0.2, xr=None, yr=None) -> None:
+    """Equal-scale x-y axes (m) of a top view, by default covering the workspace disc and ``margin`` m more;
+    ``xr``, ``yr`` set the ranges instead."""
     reach = p.r_max + margin
-    fig.update_xaxes(title_text="x (m)", range=[-reach, reach], zeroline=False, constrain="domain")
-    fig.update_yaxes(title_text="y (m)", range=[-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
+    fig.update_xaxes(title_text="x (m)", range=xr or [-reach, reach], zeroline=False, constrain="domain")
+    fig.update_yaxes(title_text="y (m)", range=yr or [-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
 
 
 def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
@@ -344,11 +230,11 @@ def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
     x = as_vector(x, "x")
     fig = go.Figure()
     cx, cy = _circle(p.r_max)
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"reach {p.r_max:g} m",
+    fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines", name=f"reach {p.r_max:g} m",
                              line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip"))
     if p.r_min > 0:
         cx, cy = _circle(p.r_min)
-        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines",
+        fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines",
                                  name=f"hole {p.r_min:g} m",
                                  line=dict(color="#999999", dash="dot", width=1), hoverinfo="skip"))
     parts = []
@@ -362,7 +248,7 @@ def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
                              hovertemplate="target (%{x:.3f}, %{y:.3f}) m<extra></extra>"))
     finish_layout(fig, f"p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, d3 = {p.d0 - x[2]:.2f} m<br>"
                        f"{parts[0]} (elbow +1), {parts[1][5:]} (elbow −1)", height)
-    _planar_axes(fig, p)
+    top_axes(fig, p, margin=0.15)
     return fig
 
 
@@ -376,9 +262,9 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     t2 = np.linspace(-180.0, 180.0, int(n))
     det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(det, 5), mode="lines", name="det J_A",
+    fig.add_trace(go.Scatter(x=as_list(t2, 2), y=as_list(det, 5), mode="lines", name="det J_A",
                              line=dict(color=AXIS_COLOURS[0], width=3)))
-    fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(np.abs(det), 5), mode="lines",
+    fig.add_trace(go.Scatter(x=as_list(t2, 2), y=as_list(np.abs(det), 5), mode="lines",
                              name="w = |det J_A|", line=dict(color=AXIS_COLOURS[1], dash="dash", width=2)))
     fig.add_trace(go.Scatter(x=[-180, 0, 180], y=[0, 0, 0], mode="markers+text", name="singular",
                              text=["folded", "stretched", "folded"], textposition="top center",

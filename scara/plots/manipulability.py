@@ -20,8 +20,9 @@ import plotly.graph_objects as go
 from ..errors import ScaraError, as_array, as_vector, check_positive
 from ..kinematics import _params, ikine
 from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
-from ._common import PALETTE, slider
-from .kinematics import _as_list, _circle, finish_layout, top_view_arm
+from ._common import PALETTE, as_list, slider
+from .kinematics import _circle, top_axes, top_view_arm
+from .layout import finish_layout
 
 __all__ = [
     "REFERENCE_CONFIGURATIONS",
@@ -35,7 +36,7 @@ __all__ = [
     "ellipse_slider_figure",
 ]
 
-#: the five configurations of the SPEC section 2 reference table, with their labels
+#: the five reference configurations of chapter 2 (section *Five reference configurations*), with their labels
 REFERENCE_CONFIGURATIONS = {
     "q1": (0.0, -math.pi / 2, 0.5, 0.0),
     "q2": (0.0, math.pi / 4, 0.5, 0.0),
@@ -82,7 +83,7 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
         traces.append(top_view_arm(q, p, showlegend=showlegend))
     for ell, sc, key in ((vel, velocity_scale, "velocity"), (frc, force_scale, "force")):
         xy = ellipse_xy(ell, sc, n)
-        traces.append(go.Scatter(x=_as_list(xy[:, 0]), y=_as_list(xy[:, 1]), mode="lines",
+        traces.append(go.Scatter(x=as_list(xy[:, 0]), y=as_list(xy[:, 1]), mode="lines",
                                  name=f"{key} ellipse", legendgroup=key, showlegend=showlegend,
                                  line=dict(color=PALETTE[key], width=2.5, dash=_DASH[key]),
                                  hoverinfo="skip"))
@@ -92,7 +93,7 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
                 half = min(sc * ell.lengths[i], _CLIP) * ell.axes[:, i]
                 seg += [ell.centre[:2] - half, ell.centre[:2] + half, [np.nan, np.nan]]
             seg = np.array(seg)
-            traces.append(go.Scatter(x=_as_list(seg[:, 0]), y=_as_list(seg[:, 1]), mode="lines",
+            traces.append(go.Scatter(x=as_list(seg[:, 0]), y=as_list(seg[:, 1]), mode="lines",
                                      name=f"{key} principal axes", legendgroup=key, showlegend=False,
                                      line=dict(color=PALETTE[key], width=1.2, dash="dot"), hoverinfo="skip"))
     return traces
@@ -110,18 +111,11 @@ def workspace_points(radii=(0.3, 0.55, 0.8), n_angles: int = 8, height: float = 
     return np.array(pts)
 
 
-def _top_axes(fig, p, margin=0.2, xr=None, yr=None):
-    """Equal-scale x-y axes (m) of a top view, by default covering the workspace disc."""
-    reach = p.r_max + margin
-    fig.update_xaxes(title_text="x (m)", range=xr or [-reach, reach], zeroline=False, constrain="domain")
-    fig.update_yaxes(title_text="y (m)", range=yr or [-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
-
-
 def _boundary_trace(p, name="workspace boundary", showlegend=False):
     """The reach ``r = a1 + a2`` as a thin grey dashed circle (named in the captions, kept out of the legend so
     that the legend stays short at phone width)."""
     cx, cy = _circle(p.r_max)
-    return go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=name, showlegend=showlegend,
+    return go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines", name=name, showlegend=showlegend,
                       line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip")
 
 
@@ -137,10 +131,10 @@ def _axes_text(q, p):
 def reference_ellipses_figure(configurations: dict | None = None, p=None, velocity_scale: float = 0.15,
                               force_scale: float | None = None, height: int = 560) -> go.Figure:
     """Static (kernel-free) figure: the arm (top view) with its velocity and force ellipses and their principal
-    axes at named configurations, one slider step each, by default the five reference configurations of SPEC
-    section 2. Each step retitles the figure with ``theta2``, ``w`` (:func:`scara.manipulability`) and the
-    semi-axes. ``configurations`` maps a label to a joint vector (4,); between 2 and 25 of them, else
-    :class:`ScaraError`.
+    axes at named configurations, one slider step each, by default the five reference configurations of
+    chapter 2 (``REFERENCE_CONFIGURATIONS``). Each step retitles the figure with ``theta2``, ``w``
+    (:func:`scara.manipulability`) and the semi-axes. ``configurations`` maps a label to a joint vector (4,);
+    between 2 and 25 of them, else :class:`ScaraError`.
 
     >>> fig = reference_ellipses_figure()
     >>> [s.label for s in fig.layout.sliders[0].steps]
@@ -167,7 +161,7 @@ def reference_ellipses_figure(configurations: dict | None = None, p=None, veloci
                           args=[{"x": [t.x for t in tr], "y": [t.y for t in tr]}, {"title.text": title(name, q)},
                                 list(range(len(tr)))]))
     finish_layout(fig, title(first, qs[first]), height, sliders=[slider(steps, prefix="configuration ")])
-    _top_axes(fig, p, xr=[-0.55, 1.55], yr=[-1.0, 1.0])
+    top_axes(fig, p, xr=[-0.55, 1.55], yr=[-1.0, 1.0])
     return fig
 
 
@@ -195,8 +189,8 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
         for q in qs:
             ell = (velocity_ellipsoid if key == "velocity" else force_ellipsoid)(q, p, rows=(0, 1))
             xy = ellipse_xy(ell, sc, n=61)
-            xs += _as_list(xy[:, 0]) + [None]
-            ys += _as_list(xy[:, 1]) + [None]
+            xs += as_list(xy[:, 0]) + [None]
+            ys += as_list(xy[:, 1]) + [None]
         outlines[key] = (xs, ys, sc)
     fig = go.Figure()
     fig.add_trace(go.Scatter(x=ax, y=ay, mode="lines", name=f"arms (elbow {elbow:+d})",
@@ -204,7 +198,7 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
     xs, ys, sc = outlines["velocity"]
     fig.add_trace(go.Scatter(x=xs, y=ys, mode="lines", name="velocity ellipses", hoverinfo="skip",
                              line=dict(color=PALETTE["velocity"], width=2, dash=_DASH["velocity"])))
-    fig.add_trace(go.Scatter(x=_as_list(pts[:, 0]), y=_as_list(pts[:, 1]), mode="markers", name="end effector",
+    fig.add_trace(go.Scatter(x=as_list(pts[:, 0]), y=as_list(pts[:, 1]), mode="markers", name="end effector",
                              marker=dict(size=4, color=PALETTE["reference"]),
                              hovertemplate="(%{x:.2f}, %{y:.2f}) m<extra></extra>"))
     fig.add_trace(_boundary_trace(p))
@@ -220,7 +214,7 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
             {"x": [xs], "y": [ys], "name": [f"{key} ellipses"], "line.color": [PALETTE[key]],
              "line.dash": [_DASH[key]]}, {"title.text": title(key, sc)}, [1]]))
     finish_layout(fig, title("velocity", velocity_scale), height, sliders=[slider(steps, prefix="ellipses: ")])
-    _top_axes(fig, p, margin=0.15)
+    top_axes(fig, p, margin=0.15)
     return fig
 
 
@@ -238,22 +232,22 @@ def manipulability_map_figure(p=None, n: int = 101, height: int = 520) -> go.Fig
     xs, ys, W = workspace_map(p, n)
     r_in, r_out = singular_radii(p)
     fig = go.Figure()
-    fig.add_trace(go.Heatmap(x=_as_list(xs), y=_as_list(ys), z=[_as_list(row) for row in W], colorscale="Viridis",
+    fig.add_trace(go.Heatmap(x=as_list(xs), y=as_list(ys), z=[as_list(row) for row in W], colorscale="Viridis",
                              zmin=0.0, zmax=p.a1 * p.a2, name="w",
                              colorbar=dict(title=dict(text="w (m²)", side="right"), thickness=14),
                              hovertemplate="x = %{x:.2f} m, y = %{y:.2f} m<br>w = %{z:.3f} m²<extra></extra>"))
     cx, cy = _circle(r_out)
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"stretched: w = 0, r = {r_out:g} m",
+    fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines", name=f"stretched: w = 0, r = {r_out:g} m",
                              line=dict(color=PALETTE["force"], width=3), hoverinfo="skip"))
     if r_in > 1e-9:
         cx, cy = _circle(r_in)
-        fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines", name=f"folded: w = 0, r = {r_in:g} m",
+        fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines", name=f"folded: w = 0, r = {r_in:g} m",
                                  line=dict(color="#CC79A7", width=3, dash="dash"), hoverinfo="skip"))
     else:
         fig.add_trace(go.Scatter(x=[0.0], y=[0.0], mode="markers", name="folded: w = 0, r = 0",
                                  marker=dict(color="#CC79A7", size=12, symbol="circle-open", line=dict(width=3))))
     cx, cy = _circle(math.hypot(p.a1, p.a2))
-    fig.add_trace(go.Scatter(x=_as_list(cx), y=_as_list(cy), mode="lines",
+    fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines",
                              name=f"largest w: r = {math.hypot(p.a1, p.a2):.3f} m",
                              line=dict(color=PALETTE["reference"], width=2, dash="dot"), hoverinfo="skip"))
     finish_layout(fig, "Manipulability w over the workspace", height)
@@ -280,10 +274,10 @@ def duality_figure(q, p=None, n: int = 181, height: int = 440) -> go.Figure:
     for key, name, dash, k, inverse in styles:
         with np.errstate(divide="ignore"):
             y = 1.0 / sig[:, k] if inverse else sig[:, k]
-        fig.add_trace(go.Scatter(x=_as_list(t2, 2), y=_as_list(y, 5), mode="lines", name=name, legendgroup=key,
+        fig.add_trace(go.Scatter(x=as_list(t2, 2), y=as_list(y, 5), mode="lines", name=name, legendgroup=key,
                                  line=dict(color=PALETTE[key], dash=dash, width=2.5)))
     here = velocity_ellipsoid(q, p, rows=(0, 1)).lengths
-    fig.add_trace(go.Scatter(x=[round(math.degrees(q[1]), 2)] * 4, y=_as_list(np.concatenate([here, 1.0 / here]), 5),
+    fig.add_trace(go.Scatter(x=[round(math.degrees(q[1]), 2)] * 4, y=as_list(np.concatenate([here, 1.0 / here]), 5),
                              mode="markers", name=f"θ2 = {math.degrees(q[1]):.0f}°",
                              marker=dict(size=9, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))))
     finish_layout(fig, "Semi-axes of the two ellipses against θ2", height)
@@ -326,5 +320,5 @@ def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: f
     fig.add_trace(_boundary_trace(p))
     finish_layout(fig, title(vals[active], qs[active]), height,
                   sliders=[slider(steps, prefix="θ2 (°) = ", active=active)])
-    _top_axes(fig, p)
+    top_axes(fig, p)
     return fig

@@ -15,7 +15,8 @@ from plotly.subplots import make_subplots
 from ..errors import ScaraError
 from ..trajectory import Trajectory, Trapezoidal, plan_path
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
-from .kinematics import finish_layout, top_view_arm
+from .kinematics import top_view_arm
+from .layout import finish_layout, stacked_axes
 
 __all__ = [
     "decimate",
@@ -76,11 +77,10 @@ def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = N
     s, sd, sdd = law.evaluate(tau)
     sdd[-1] = -law.acceleration  # draw the last blend up to its end
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05)
-    for row, (y, label, name) in enumerate(((s, "s (m)", "s"), (sd, "ṡ (m/s)", "ṡ"), (sdd, "s̈ (m/s²)", "s̈")), 1):
+    for row, (y, name) in enumerate(((s, "s"), (sd, "ṡ"), (sdd, "s̈")), 1):
         fig.add_trace(go.Scatter(x=_r(tau, 4), y=_r(y, 6), mode="lines", name=name,
                                  line=dict(color=PALETTE["reference"], width=2, dash=DASHES[row - 1])), row=row, col=1)
-        fig.update_yaxes(title_text=label, row=row, col=1)
-    fig.update_xaxes(title_text="time since the segment started, τ (s)", row=3, col=1)
+    stacked_axes(fig, ("s (m)", "ṡ (m/s)", "s̈ (m/s²)"), "time since the segment started, τ (s)")
     shapes = [dict(type="rect", xref="x", yref="paper", x0=a, x1=b, y0=0, y1=1, layer="below", fillcolor=_VIA_COLOUR,
                    opacity=0.2, line=dict(width=0)) for a, b in ((0.0, tc), (T - tc, T))]
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="blends", showlegend=True, hoverinfo="skip",
@@ -199,17 +199,16 @@ def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = No
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
                         row_heights=[0.3, 0.3, 0.3, 0.1])
     labels = ("p (m)", "ṗ (m/s)", "p̈ (m/s²)")
-    for row, label in enumerate(labels, start=1):
+    for row in range(1, 4):
         for c in range(3):
             x, y = series[3 * (row - 1) + c]
             fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=f"p_{_COMP[c]}",
                                      legendgroup=_COMP[c], showlegend=row == 1,
                                      line=dict(color=AXIS_COLOURS[c], width=1.6, dash=DASHES[c])), row=row, col=1)
-        fig.update_yaxes(title_text=label, row=row, col=1)
     fig.add_trace(go.Scatter(x=series[9][0], y=series[9][1], mode="lines", name="φ",
                              line=dict(color=AXIS_COLOURS[3], width=1.6, dash=DASHES[3])), row=4, col=1)
-    fig.update_yaxes(title_text="φ (°)", nticks=3, row=4, col=1)
-    fig.update_xaxes(title_text="t (s)", row=4, col=1)
+    stacked_axes(fig, labels + ("φ (°)",))
+    fig.update_yaxes(nticks=3, row=4, col=1)
     _band_legend(fig)
     return finish_layout(fig, title or "Position, velocity, acceleration", height, shapes=segment_shapes(traj))
 
@@ -347,9 +346,7 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
                              text=[f"{w[km]:.4f} m² at {traj.t[km]:.1f} s"], textposition="top right",
                              name="min w", marker=dict(size=10, color=PALETTE["force"], symbol="diamond")),
                   row=3, col=1)
-    fig.update_yaxes(title_text="angle (°)", row=1, col=1)
-    fig.update_yaxes(title_text="d3 (m)", row=2, col=1)
-    fig.update_yaxes(title_text="w (m²)", rangemode="tozero", row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
+    stacked_axes(fig, ("angle (°)", "d3 (m)", "w (m²)"))
+    fig.update_yaxes(rangemode="tozero", row=3, col=1)
     _band_legend(fig)
     return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=segment_shapes(traj))

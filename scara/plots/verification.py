@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import plotly.graph_objects as go
 
-from ._common import DASHES, JOINT_COLOURS, slider
-from .kinematics import finish_layout
+from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, slider, thin
+from .layout import finish_layout
 
 __all__ = ["IMPLEMENTATION_COLOURS", "PER_CALL_TASKS", "RUN_TASKS", "speed_figure", "rotor_coupling_figure"]
 
@@ -102,14 +102,13 @@ def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, he
     t = np.asarray(t)
     d = np.asarray(coupling_torque)
     tau = np.asarray(torque)
-    step = max(1, len(t) // max_points)
+    idx = thin(len(t), max_points)
     fig = go.Figure()
-    units = ("N m", "N m", "N", "N m")
     for j in range(4):
         share = np.max(np.abs(d[:, j])) / max(np.max(np.abs(tau[:, j])), 1e-300)
-        fig.add_trace(go.Scatter(x=t[::step], y=d[::step, j], mode="lines",
+        fig.add_trace(go.Scatter(x=t[idx], y=d[idx, j], mode="lines",
                                  line=dict(color=JOINT_COLOURS[j], width=1.8, dash=DASHES[j]),
-                                 name=f"joint {j + 1} ({units[j]}): up to {100 * share:.2f} % of |τ|"))
+                                 name=f"joint {j + 1} ({JOINT_UNITS[j]}): up to {100 * share:.2f} % of |τ|"))
     finish_layout(fig, "Rotor coupling torque ΔB q̈ (5 kg payload)", height)
     fig.update_xaxes(title_text="time t (s)")
     fig.update_yaxes(title_text="ΔB q̈ (N m; N for joint 3)")

@@ -1,5 +1,5 @@
 """Operational-space trajectory planning (chapter 3): path primitives, the trapezoidal timing law, stop and
-via points, sampling at ``dt``, and the reference scenario of SPEC section 4.
+via points, sampling at ``dt``, and the reference scenario of chapter 3.
 
 Public names: :class:`Line`, :class:`Arc` (path primitives), :class:`Trapezoidal` and :func:`trapezoidal`
 (timing law), :class:`Waypoint`, :func:`plan_path` and the :class:`Trajectory` it returns,

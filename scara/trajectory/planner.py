@@ -77,7 +77,7 @@ class Waypoint:
 
 def start_orientation(point, p=None, elbow: int = -1) -> float:
     """The orientation ``phi = theta1 + theta2`` of the configuration reaching ``point`` (3,) with the given
-    elbow and ``theta4 = 0`` (SPEC section 4: phi is held at the start configuration's value).
+    elbow and ``theta4 = 0`` (chapter 3: phi is held at the start configuration's value).
 
     >>> round(start_orientation([0.18, 0.20, 0.5]), 6)
     -2.136348
@@ -352,112 +352,18 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
     ((3001,), (3001, 4), 0.5)
     """
     dt = check_positive(dt, "dt")
-    try:
-        wps = list(waypoints)
-    except TypeError as exc:
-        raise ScaraError(f"waypoints must be a sequence of points, got {waypoints!r}") from exc
-    if len(wps) < 2:
-        raise ScaraError(f"a path needs at least two waypoints, got {len(wps)}")
-    wps = [_as_waypoint(w, i) for i, w in enumerate(wps)]
-    n, m = len(wps), len(wps) - 1
-    labels = [w.label for w in wps]
-    seg_labels = [f"{labels[j]}->{labels[j + 1]}" for j in range(m)]
-    pos = np.array([w.position for w in wps])
-
-    if np.ndim(durations) != 1 or len(durations) != m:
-        raise ShapeError(f"durations must have one entry per segment ({m} for {n} waypoints), got {durations!r}")
-    T = as_array(durations, "durations", (m,)).copy()
-    nT = np.empty(m, dtype=np.int64)
-    for j in range(m):
-        check_positive(T[j], f"duration of segment {seg_labels[j]}")
-        nT[j] = _samples(T[j], dt, f"duration of segment {seg_labels[j]}")
+    wps, labels, seg_labels, pos = _waypoints(waypoints)
+    nT = _segment_samples(durations, seg_labels, dt)
     T = nT * dt  # the durations the samples realise (equal to the inputs up to rounding)
-
-    if blends is None:
-        blends = [None] * m
-    blends = list(blends)
-    if len(blends) != m:
-        raise ShapeError(f"blends must have one entry per segment ({m}), got {len(blends)}")
-    tc = np.array([DEFAULT_BLEND_FRACTION * T[j] if b is None else float(b) for j, b in enumerate(blends)])
-
-    # anticipations
-    ant = np.array([w.anticipation for w in wps])
-    for i in (0, n - 1):
-        if ant[i] > 0:
-            raise ScaraError(f"{labels[i]} is the {'first' if i == 0 else 'last'} waypoint and cannot be a via point "
-                             f"(anticipation = {ant[i]:g} s): the arm starts and ends at rest")
-    nA = np.zeros(n, dtype=np.int64)
-    for i in range(1, n - 1):
-        if ant[i] > 0:
-            if ant[i] >= T[i - 1] or ant[i] >= T[i]:
-                raise ScaraError(f"anticipation at via point {labels[i]} = {ant[i]:g} s must be shorter than both "
-                                 f"segments it joins: {seg_labels[i - 1]} lasts {T[i - 1]:g} s and "
-                                 f"{seg_labels[i]} lasts {T[i]:g} s")
-            nA[i] = _samples(ant[i], dt, f"anticipation at {labels[i]}")
-
-    # geometry
-    arcs = dict(arcs or {})
-    for key in arcs:
-        if not (isinstance(key, (int, np.integer)) and 0 <= key < m):
-            raise ScaraError(f"arcs keys are segment indices 0..{m - 1} (segment j joins waypoints j and j+1), "
-                             f"got {key!r}")
-    segments = []
-    for j in range(m):
-        a, b = pos[j], pos[j + 1]
-        if np.linalg.norm(b - a) <= GEOMETRY_TOL:
-            raise ScaraError(f"repeated point: {labels[j + 1]} = {labels[j]} = {_fmt(a)}; consecutive waypoints must "
-                             f"differ (segment {seg_labels[j]} would have zero length)")
-        spec = arcs.get(j)
-        try:
-            if spec is None:
-                seg = Line(a, b)
-            elif isinstance(spec, Arc):
-                for name, got, want in (("start", spec.start, a), ("end", spec.end, b)):
-                    if np.linalg.norm(got - want) > GEOMETRY_TOL:
-                        raise ScaraError(f"its {name} {_fmt(got)} is not the waypoint {_fmt(want)}")
-                seg = spec
-            else:
-                seg = Arc.through(a, as_array(spec, f"arcs[{j}] (a point the arc passes through)", (3,)), b)
-        except ScaraError as exc:
-            raise type(exc)(f"segment {seg_labels[j]}: {exc}") from exc
-        segments.append(seg)
-
-    laws = []
-    for j, seg in enumerate(segments):
-        try:
-            laws.append(Trapezoidal(seg.length, T[j], tc[j]))
-        except ScaraError as exc:
-            raise ScaraError(f"segment {seg_labels[j]}: {exc}") from exc
-
-    # orientation
-    if phi is None:
-        phi0 = wps[0].phi if wps[0].phi is not None else start_orientation(pos[0], p, elbow)
-    else:
-        phi0 = float(phi)
-        if not np.isfinite(phi0):
-            raise ScaraError(f"phi = {phi0} must be finite")
-        if wps[0].phi is not None:
-            phi0 = wps[0].phi
-    phis = [phi0]
-    for w in wps[1:]:
-        phis.append(w.phi if w.phi is not None else phis[-1])
-
-    # timing in whole samples
-    k0 = np.zeros(m, dtype=np.int64)
-    for j in range(1, m):
-        k0[j] = k0[j - 1] + nT[j - 1] - nA[j]
-    k1 = k0 + nT
-    k_end = int(k1.max())
-    if total is None:
-        k_total = k_end
-    else:
-        total_f = check_positive(total, "total")
-        k_total = _samples(total_f, dt, "total")
-        if k_total < k_end:
-            raise ScaraError(f"total = {total_f:g} s is shorter than the motion, which ends at {k_end * dt:g} s")
+    blends, tc = _blend_times(blends, T)
+    ant, nA = _anticipation_samples(wps, seg_labels, T, dt)
+    arcs, segments = _segments(pos, arcs, labels, seg_labels)
+    laws = _timing_laws(segments, T, tc, seg_labels)
+    phis = _orientations(wps, pos, phi, p, elbow)
+    k0, k1, k_end, k_total = _schedule(nT, nA, total, dt)
 
     p_checked = _params(p)
-    q0 = ikine(np.r_[pos[0], phi0], p_checked, elbow=elbow)
+    q0 = ikine(np.r_[pos[0], phis[0]], p_checked, elbow=elbow)
     built = dict(
         dt=dt, params=p_checked, elbow=elbow, q0=q0,
         waypoints=pos, labels=labels, via=ant > 0, anticipations=nA * dt, phi_waypoints=np.array(phis),
@@ -469,19 +375,157 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
     traj = Trajectory(waypoints=wps, durations=list(T), blends=blends, arcs=arcs, phi=phi, total=total, dt=dt,
                       p=p, elbow=elbow, check=check, _built=built)
     if check:
-        ok = is_reachable(traj.x, p_checked)
-        if not ok.all():
-            k = int(np.argmin(ok))
-            tk = float(traj.t[k])
-            try:
-                check_reachable(traj.x[k], p_checked, label="its point")
-                why = ""
-            except UnreachableError as exc:
-                why = f": {exc}"
-            raise UnreachableError(f"the path leaves the workspace at t = {tk:.3f} s (sample {k}) on segment "
-                                   f"{traj._segment_names(tk)}{why}")
-        # a via point's corner is rounded, so the path may stay in reach while the point itself is not: the
-        # planner still refuses it (the arm is asked to pass near a point it could never reach)
-        for i, point in enumerate(pos):
-            check_reachable(point, p_checked, label=f"waypoint {labels[i]}")
+        _check_in_reach(traj, p_checked)
     return traj
+
+
+def _waypoints(waypoints):
+    """The waypoints as :class:`Waypoint` objects, their labels, the segments' labels and the positions (n, 3)."""
+    try:
+        wps = list(waypoints)
+    except TypeError as exc:
+        raise ScaraError(f"waypoints must be a sequence of points, got {waypoints!r}") from exc
+    if len(wps) < 2:
+        raise ScaraError(f"a path needs at least two waypoints, got {len(wps)}")
+    wps = [_as_waypoint(w, i) for i, w in enumerate(wps)]
+    labels = [w.label for w in wps]
+    seg_labels = [f"{labels[j]}->{labels[j + 1]}" for j in range(len(wps) - 1)]
+    return wps, labels, seg_labels, np.array([w.position for w in wps])
+
+
+def _segment_samples(durations, seg_labels, dt):
+    """Each segment's duration as a whole number of samples (checked positive)."""
+    m = len(seg_labels)
+    if np.ndim(durations) != 1 or len(durations) != m:
+        raise ShapeError(f"durations must have one entry per segment ({m} for {m + 1} waypoints), got {durations!r}")
+    T = as_array(durations, "durations", (m,))
+    nT = np.empty(m, dtype=np.int64)
+    for j in range(m):
+        check_positive(T[j], f"duration of segment {seg_labels[j]}")
+        nT[j] = _samples(T[j], dt, f"duration of segment {seg_labels[j]}")
+    return nT
+
+
+def _blend_times(blends, T):
+    """The blend time ``t_c`` of each segment's trapezoid (default a third of its duration)."""
+    m = len(T)
+    blends = [None] * m if blends is None else list(blends)
+    if len(blends) != m:
+        raise ShapeError(f"blends must have one entry per segment ({m}), got {len(blends)}")
+    tc = np.array([DEFAULT_BLEND_FRACTION * T[j] if b is None else float(b) for j, b in enumerate(blends)])
+    return blends, tc
+
+
+def _anticipation_samples(wps, seg_labels, T, dt):
+    """The anticipation (s) of every waypoint and its number of samples; only inner waypoints may be via
+    points, and an anticipation must be shorter than both segments it joins."""
+    n = len(wps)
+    ant = np.array([w.anticipation for w in wps])
+    for i in (0, n - 1):
+        if ant[i] > 0:
+            raise ScaraError(f"{wps[i].label} is the {'first' if i == 0 else 'last'} waypoint and cannot be a via "
+                             f"point (anticipation = {ant[i]:g} s): the arm starts and ends at rest")
+    nA = np.zeros(n, dtype=np.int64)
+    for i in range(1, n - 1):
+        if ant[i] > 0:
+            if ant[i] >= T[i - 1] or ant[i] >= T[i]:
+                raise ScaraError(f"anticipation at via point {wps[i].label} = {ant[i]:g} s must be shorter than "
+                                 f"both segments it joins: {seg_labels[i - 1]} lasts {T[i - 1]:g} s and "
+                                 f"{seg_labels[i]} lasts {T[i]:g} s")
+            nA[i] = _samples(ant[i], dt, f"anticipation at {wps[i].label}")
+    return ant, nA
+
+
+def _segments(pos, arcs, labels, seg_labels):
+    """The geometric path of each segment: a :class:`Line`, or an :class:`Arc` where ``arcs`` asks for one."""
+    m = len(seg_labels)
+    arcs = dict(arcs or {})
+    for key in arcs:
+        if not (isinstance(key, (int, np.integer)) and 0 <= key < m):
+            raise ScaraError(f"arcs keys are segment indices 0..{m - 1} (segment j joins waypoints j and j+1), "
+                             f"got {key!r}")
+    segments = []
+    for j in range(m):
+        a, b = pos[j], pos[j + 1]
+        if np.linalg.norm(b - a) <= GEOMETRY_TOL:
+            raise ScaraError(f"repeated point: {labels[j + 1]} = {labels[j]} = {_fmt(a)}; consecutive waypoints must "
+                             f"differ (segment {seg_labels[j]} would have zero length)")
+        try:
+            segments.append(_segment(a, b, arcs.get(j), j))
+        except ScaraError as exc:
+            raise type(exc)(f"segment {seg_labels[j]}: {exc}") from exc
+    return arcs, segments
+
+
+def _segment(a, b, arc, j):
+    if arc is None:
+        return Line(a, b)
+    if isinstance(arc, Arc):
+        for name, got, want in (("start", arc.start, a), ("end", arc.end, b)):
+            if np.linalg.norm(got - want) > GEOMETRY_TOL:
+                raise ScaraError(f"its {name} {_fmt(got)} is not the waypoint {_fmt(want)}")
+        return arc
+    return Arc.through(a, as_array(arc, f"arcs[{j}] (a point the arc passes through)", (3,)), b)
+
+
+def _timing_laws(segments, T, tc, seg_labels):
+    """The trapezoidal timing law of every segment (Siciliano et al. 2009, (4.8)-(4.9); chapter 3)."""
+    laws = []
+    for j, seg in enumerate(segments):
+        try:
+            laws.append(Trapezoidal(seg.length, T[j], tc[j]))
+        except ScaraError as exc:
+            raise ScaraError(f"segment {seg_labels[j]}: {exc}") from exc
+    return laws
+
+
+def _orientations(wps, pos, phi, p, elbow):
+    """The orientation at every waypoint: its own ``phi`` if it has one, else the one before it; the first is
+    the waypoint's, or ``phi``, or the start configuration's."""
+    if phi is not None and not np.isfinite(float(phi)):
+        raise ScaraError(f"phi = {float(phi)} must be finite")
+    if wps[0].phi is not None:
+        phi0 = wps[0].phi
+    else:
+        phi0 = start_orientation(pos[0], p, elbow) if phi is None else float(phi)
+    phis = [phi0]
+    for w in wps[1:]:
+        phis.append(w.phi if w.phi is not None else phis[-1])
+    return phis
+
+
+def _schedule(nT, nA, total, dt):
+    """Start and end sample of every segment (each starts its anticipation before the previous one ends), the
+    last motion sample and the length of the series."""
+    m = len(nT)
+    k0 = np.zeros(m, dtype=np.int64)
+    for j in range(1, m):
+        k0[j] = k0[j - 1] + nT[j - 1] - nA[j]
+    k1 = k0 + nT
+    k_end = int(k1.max())
+    if total is None:
+        return k0, k1, k_end, k_end
+    total_f = check_positive(total, "total")
+    k_total = _samples(total_f, dt, "total")
+    if k_total < k_end:
+        raise ScaraError(f"total = {total_f:g} s is shorter than the motion, which ends at {k_end * dt:g} s")
+    return k0, k1, k_end, k_total
+
+
+def _check_in_reach(traj, p):
+    """Every sample in the workspace (the message names the first one out and its segment), and every waypoint
+    too: a via point's corner is rounded, so the path may stay in reach while the point itself is not, and the
+    arm would be asked to pass near a point it could never reach."""
+    ok = is_reachable(traj.x, p)
+    if not ok.all():
+        k = int(np.argmin(ok))
+        tk = float(traj.t[k])
+        try:
+            check_reachable(traj.x[k], p, label="its point")
+            why = ""
+        except UnreachableError as exc:
+            why = f": {exc}"
+        raise UnreachableError(f"the path leaves the workspace at t = {tk:.3f} s (sample {k}) on segment "
+                               f"{traj._segment_names(tk)}{why}")
+    for label, point in zip(traj.labels, traj.waypoints):
+        check_reachable(point, p, label=f"waypoint {label}")

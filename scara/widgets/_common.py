@@ -32,9 +32,12 @@ from plotly.basedatatypes import Undefined
 from IPython.display import display
 
 from ..errors import ScaraError
-from ..plots._common import without_template
+from ..plots.layout import without_template
 
-__all__ = ["LivePanel", "PanelView", "table", "readable", "start_value", "STALE_TITLE"]
+__all__ = ["LivePanel", "PanelView", "table", "readable", "start_value", "angle_slider", "LABEL_STYLE", "STALE_TITLE"]
+
+#: the style of every control: its description shown in full, not cut to a fixed width
+LABEL_STYLE = {"description_width": "initial"}
 
 #: the title a figure shows while the controls describe a setting that was refused
 STALE_TITLE = "Not current: this setting was refused (see the message above)"
@@ -119,11 +122,11 @@ def _same(a, b) -> bool:
     return a == b or (a != a and b != b)  # NaN equals NaN here
 
 
-def _delta(old: dict, new: dict, keep=()) -> dict:
+def _delta(old: dict, new: dict) -> dict:
     """The top-level properties of ``new`` that differ from ``old``; properties ``old`` had and ``new`` has
-    not are reset (``None``), except those named in ``keep``."""
+    not are reset (``None``)."""
     out = {k: v for k, v in new.items() if k not in old or not _same(old[k], v)}
-    out.update({k: None for k in old if k not in new and k not in keep})
+    out.update({k: None for k in old if k not in new})
     return out
 
 
@@ -364,3 +367,10 @@ def start_value(value, lo: float, hi: float, name: str, unit: str = "") -> float
         u = f" {unit}" if unit else ""
         raise ScaraError(f"{name} = {v:g}{u} is outside the panel's range {lo:g} to {hi:g}{u}")
     return v
+
+
+def angle_slider(value_rad: float, name: str, desc: str):
+    """A slider in degrees over [-180°, 180°] starting at ``value_rad`` (rad), checked by :func:`start_value`."""
+    v = start_value(math.degrees(value_rad), -180.0, 180.0, name, "°")
+    return ipw.FloatSlider(value=v, min=-180.0, max=180.0, step=1.0, description=desc, continuous_update=False,
+                           style=LABEL_STYLE)

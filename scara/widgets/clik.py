@@ -11,14 +11,12 @@ from plotly.subplots import make_subplots
 
 from ..clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
 from ..kinematics import _params
-from ..plots.clik import METHOD_LABELS, _label, envelope, thin
-from ..plots._common import PALETTE
-from ..plots.kinematics import finish_layout
-from ._common import LivePanel, PanelView, readable, table
+from ..plots._common import envelope, run_colour, run_label, thin
+from ..plots.layout import finish_layout, stacked_axes
+from ._common import LABEL_STYLE, LivePanel, PanelView, readable, table
 
 __all__ = ["clik_panel"]
 
-_STYLE = {"description_width": "initial"}
 _METHODS = {"Jacobian inverse": "inverse", "Jacobian transpose": "transpose",
             "pseudo-inverse + null space": "pseudoinverse", "second order": "second_order"}
 
@@ -36,19 +34,19 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
 
         traj = reference_trajectory(p=p)
     gain = dict(base=10, min=0.0, max=math.log10(2500.0), step=0.01, continuous_update=False, readout_format=".0f",
-                style=_STYLE)
+                style=LABEL_STYLE)
     controls = {
-        "method": ipw.Dropdown(options=list(_METHODS), value="Jacobian inverse", description="method", style=_STYLE),
+        "method": ipw.Dropdown(options=list(_METHODS), value="Jacobian inverse", description="method", style=LABEL_STYLE),
         "relaxed": ipw.Dropdown(options=list(COMPONENTS), value="x", description="relaxed (pseudo-inverse)",
-                                style=_STYLE),
+                                style=LABEL_STYLE),
         "Kx": ipw.FloatLogSlider(value=SEED_K[0], description="K_x (1/s)", **gain),
         "Ky": ipw.FloatLogSlider(value=SEED_K[1], description="K_y (1/s)", **gain),
         "Kz": ipw.FloatLogSlider(value=SEED_K[2], description="K_z (1/s)", **gain),
         "Kphi": ipw.FloatLogSlider(value=SEED_K[3], description="K_φ (1/s)", **gain),
         "damping": ipw.FloatSlider(value=0.0, min=0.0, max=0.2, step=0.005, readout_format=".3f",
-                                   description="damping λ (m)", continuous_update=False, style=_STYLE),
+                                   description="damping λ (m)", continuous_update=False, style=LABEL_STYLE),
         "k0": ipw.FloatSlider(value=1.0, min=0.0, max=20.0, step=0.5, description="null-space gain k0 (1/s)",
-                              continuous_update=False, style=_STYLE),
+                              continuous_update=False, style=LABEL_STYLE),
     }
 
     def compute(method, relaxed, Kx, Ky, Kz, Kphi, damping, k0):
@@ -70,21 +68,18 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
         series = [envelope(r.t, r.position_error, points), envelope(r.t, r.orientation_error, points)]
         idx = thin(len(r.t), points)
         series.append((r.t[idx], r.w[idx]))
-        title = f"{METHOD_LABELS.get(m, m)}: max ‖e_p‖ after 0.1 s = {s['max_position_error'] * 1e3:.4g} mm"
-        colour = PALETTE.get(m, "#000000")
+        title = f"{run_label(m)}: max ‖e_p‖ after 0.1 s = {s['max_position_error'] * 1e3:.4g} mm"
+        colour = run_colour(m)
         if drawn:  # the figure's layout is built: send data, names, colours and the title
-            fig = dict(data=[dict(x=x, y=y, name=_label(r) if k < 2 else "w", line=dict(color=colour, width=1.5))
+            fig = dict(data=[dict(x=x, y=y, name=run_label(r) if k < 2 else "w", line=dict(color=colour, width=1.5))
                              for k, (x, y) in enumerate(series)], title=title)
         else:
             fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
             for k, (x, y) in enumerate(series):
-                fig.add_trace(dict(type="scatter", x=x, y=y, mode="lines", name=_label(r) if k < 2 else "w",
+                fig.add_trace(dict(type="scatter", x=x, y=y, mode="lines", name=run_label(r) if k < 2 else "w",
                                    showlegend=k == 0, line=dict(color=colour, width=1.5)), row=k + 1, col=1)
             finish_layout(fig, title, 620)
-            fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
-            fig.update_yaxes(type="log", exponentformat="power", title_text="|e_φ| (rad)", row=2, col=1)
-            fig.update_yaxes(title_text="w (m²)", row=3, col=1)
-            fig.update_xaxes(title_text="t (s)", row=3, col=1)
+            stacked_axes(fig, ("‖e_p‖ (m)", "|e_φ| (rad)", "w (m²)"), log=(1, 2))
             drawn["method"] = m
         rows = [("max / RMS position error (mm)",
                  f"{s['max_position_error'] * 1e3:.4g} / {s['rms_position_error'] * 1e3:.4g}"),

@@ -10,12 +10,12 @@ import numpy as np
 
 from ..control import AdaptiveController, OperationalSpaceController, RobustController, control_summary
 from ..kinematics import _params
-from ..plots.control import _colour, _label, tuning_figure, tuning_series, tuning_signal, tuning_title
-from ._common import LivePanel, PanelView, readable, start_value
+from ..plots._common import run_colour, run_label
+from ..plots.control import tuning_figure, tuning_series, tuning_signal, tuning_title
+from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value
 
 __all__ = ["control_panel"]
 
-_STYLE = {"description_width": "initial"}
 _CONTROLLERS = ("robust", "adaptive (Slotine-Li)", "operational ID + integral", "operational ID, no integral")
 #: which controls each controller reads (the others are greyed out)
 _USES = {
@@ -28,7 +28,7 @@ _USES = {
 
 def _log(value, lo, hi, desc, fmt=".3g"):
     return ipw.FloatLogSlider(value=value, base=10, min=np.log10(lo), max=np.log10(hi), step=0.01,
-                              description=desc, readout_format=fmt, continuous_update=False, style=_STYLE)
+                              description=desc, readout_format=fmt, continuous_update=False, style=LABEL_STYLE)
 
 
 def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I):
@@ -59,10 +59,10 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
 
     jref = clik2(traj, p=p)
     controls = {
-        "controller": ipw.Dropdown(options=_CONTROLLERS, value="robust", description="controller", style=_STYLE),
+        "controller": ipw.Dropdown(options=_CONTROLLERS, value="robust", description="controller", style=LABEL_STYLE),
         "payload": ipw.FloatSlider(value=start_value(payload, 0.0, 10.0, "payload", "kg"), min=0.0, max=10.0,
                                    step=0.5, description="true payload m_L (kg)", continuous_update=False,
-                                   style=_STYLE),
+                                   style=LABEL_STYLE),
         "K_P": _log(900.0, 10.0, 1e5, "K_P (1/s²)", ".0f"),
         "K_D": _log(60.0, 2.0, 3000.0, "K_D (1/s)", ".1f"),
         "Lambda": _log(30.0, 1.0, 300.0, "Λ (1/s)", ".1f"),
@@ -107,7 +107,7 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
         if drawn:  # the figure's layout is built: send data, names, colours, the signal's axis and the title
             data = [dict(x=x, y=y) for x, y in tuning_series(res, points)]
             name, colour, log = tuning_signal(res)
-            data[0].update(name=_label(res), line=dict(color=_colour(res), width=1.8))
+            data[0].update(name=run_label(res), line=dict(color=run_colour(res), width=1.8))
             data[5].update(name=name, line=dict(color=colour, width=1.5))
             axis = dict(drawn["signal_axis"], type="log" if log else "linear", title=dict(text=name))
             fig = dict(data=data, title=tuning_title(res, s, extra), layout={drawn["signal_axis_key"]: axis})

@@ -13,11 +13,10 @@ from ..errors import ScaraError, as_vector, check_positive
 from ..kinematics import _params
 from ..plots.dynamics import inertia_figure
 from ..simulate import PDGravityController
-from ._common import LivePanel, PanelView, start_value, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
 
 __all__ = ["dynamics_panel"]
 
-_STYLE = {"description_width": "initial"}
 #: a quill sag above this (m) is flagged in the panel
 _SAG_NOTE = 0.003
 
@@ -30,20 +29,16 @@ def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: 
     Only theta2 and the payload change ``B``: moving the other sliders shows it."""
     p = _params(p)
     q = as_vector(q, "q")
-    deg = dict(min=-180.0, max=180.0, step=1.0, continuous_update=False, style=_STYLE)
     controls = {
         "payload": ipw.FloatSlider(value=start_value(payload, 0.0, 20.0, "payload", "kg"), min=0.0, max=20.0,
-                                   step=0.5, description="payload m_L (kg)", continuous_update=False, style=_STYLE),
-        "theta1": ipw.FloatSlider(value=start_value(math.degrees(q[0]), -180, 180, "theta1", "°"),
-                                  description="θ1 (°)", **deg),
-        "theta2": ipw.FloatSlider(value=start_value(math.degrees(q[1]), -180, 180, "theta2", "°"),
-                                  description="θ2 (°)", **deg),
+                                   step=0.5, description="payload m_L (kg)", continuous_update=False, style=LABEL_STYLE),
+        "theta1": angle_slider(q[0], "theta1", "θ1 (°)"),
+        "theta2": angle_slider(q[1], "theta2", "θ2 (°)"),
         "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
-                              description="d3 (m)", continuous_update=False, style=_STYLE),
-        "theta4": ipw.FloatSlider(value=start_value(math.degrees(q[3]), -180, 180, "theta4", "°"),
-                                  description="θ4 (°)", **deg),
+                              description="d3 (m)", continuous_update=False, style=LABEL_STYLE),
+        "theta4": angle_slider(q[3], "theta4", "θ4 (°)"),
         "K_P3": ipw.FloatLogSlider(value=start_value(K_P3, 100.0, 1e6, "K_P3", "N/m"), base=10, min=2, max=6,
-                                   step=0.1, description="K_P3 (N/m)", continuous_update=False, style=_STYLE),
+                                   step=0.1, description="K_P3 (N/m)", continuous_update=False, style=LABEL_STYLE),
     }
 
     def compute(payload, theta1, theta2, d3, theta4, K_P3):

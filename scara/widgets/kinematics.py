@@ -11,17 +11,10 @@ from ..errors import UnreachableError, as_vector
 from ..kinematics import _params, ikine, jacobian, pose
 from ..manipulability import manipulability
 from ..plots.kinematics import arm_figure, inverse_kinematics_figure
-from ._common import LivePanel, PanelView, start_value, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
 
 __all__ = ["kinematics_panel", "inverse_kinematics_panel"]
 
-_STYLE = {"description_width": "initial"}
-
-
-def _deg_slider(value_rad, name, desc):
-    v = start_value(math.degrees(value_rad), -180.0, 180.0, name, "°")
-    return ipw.FloatSlider(value=v, min=-180.0, max=180.0, step=1.0, description=desc, continuous_update=False,
-                           style=_STYLE)
 
 
 def kinematics_panel(q=None, p=None) -> LivePanel:
@@ -36,11 +29,11 @@ def kinematics_panel(q=None, p=None) -> LivePanel:
     p = _params(p)
     q = np.array([0.0, math.radians(60.0), 0.5 * p.d0, 0.0]) if q is None else as_vector(q, "q")
     controls = {
-        "theta1": _deg_slider(q[0], "theta1", "θ1 (°)"),
-        "theta2": _deg_slider(q[1], "theta2", "θ2 (°)"),
+        "theta1": angle_slider(q[0], "theta1", "θ1 (°)"),
+        "theta2": angle_slider(q[1], "theta2", "θ2 (°)"),
         "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
-                              description="d3 (m)", continuous_update=False, style=_STYLE),
-        "theta4": _deg_slider(q[3], "theta4", "θ4 (°)"),
+                              description="d3 (m)", continuous_update=False, style=LABEL_STYLE),
+        "theta4": angle_slider(q[3], "theta4", "θ4 (°)"),
     }
 
     def compute(theta1, theta2, d3, theta4):
@@ -82,7 +75,7 @@ def inverse_kinematics_panel(x=None, p=None) -> LivePanel:
     with ``phi = 0``); an unreachable start raises :class:`UnreachableError`."""
     p = _params(p)
     x = np.array([0.18, 0.20, 0.5, 0.0]) if x is None else as_vector(x, "x")
-    box = dict(step=0.01, continuous_update=False, style=_STYLE, layout=ipw.Layout(width="180px"))
+    box = dict(step=0.01, continuous_update=False, style=LABEL_STYLE, layout=ipw.Layout(width="180px"))
     controls = {
         "px": ipw.FloatText(value=x[0], description="p_x (m)", **box),
         "py": ipw.FloatText(value=x[1], description="p_y (m)", **box),

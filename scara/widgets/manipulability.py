@@ -10,13 +10,13 @@ import plotly.graph_objects as go
 from ..errors import ScaraError, as_vector
 from ..kinematics import _params
 from ..manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
-from ..plots.kinematics import finish_layout
+from ..plots.kinematics import top_axes
+from ..plots.layout import finish_layout
 from ..plots.manipulability import ellipse_traces
-from ._common import LivePanel, PanelView, start_value, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
 
 __all__ = ["manipulability_panel"]
 
-_STYLE = {"description_width": "initial"}
 #: below this ratio of the smaller to the larger velocity semi-axis the arm is treated as singular
 _SINGULAR_RATIO = 1e-6
 
@@ -29,17 +29,14 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
     slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table says
     so instead of printing a huge number."""
     p = _params(p)
-    deg = dict(min=-180.0, max=180.0, step=1.0, continuous_update=False, style=_STYLE)
     sc0 = start_value(scale, 0.0, 0.5, "scale", "m per m/s")
     if sc0 <= 0:
         raise ScaraError(f"scale = {sc0:g} must be > 0 (metres drawn per m/s and per N)")
     controls = {
-        "theta1": ipw.FloatSlider(value=start_value(math.degrees(theta1), -180, 180, "theta1", "°"),
-                                  description="θ1 (°)", **deg),
-        "theta2": ipw.FloatSlider(value=start_value(math.degrees(theta2), -180, 180, "theta2", "°"),
-                                  description="θ2 (°)", **deg),
+        "theta1": angle_slider(theta1, "theta1", "θ1 (°)"),
+        "theta2": angle_slider(theta2, "theta2", "θ2 (°)"),
         "scale": ipw.FloatSlider(value=sc0, min=0.0, max=0.5, step=0.01, description="ellipse scale",
-                                 continuous_update=False, style=_STYLE),
+                                 continuous_update=False, style=LABEL_STYLE),
     }
 
     def compute(theta1, theta2, scale):
@@ -56,9 +53,7 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
         q, sc, v, f = s["q"], s["scale"], s["v"], s["f"]
         fig = go.Figure(ellipse_traces(q, p, sc, sc, axes=True))
         finish_layout(fig, f"θ1 = {s['theta'][0]:.0f}°, θ2 = {s['theta'][1]:.0f}°: w = {s['w']:.3f} m²", 520)
-        reach = p.r_max + 0.2
-        fig.update_xaxes(title_text="x (m)", range=[-reach, reach], constrain="domain")
-        fig.update_yaxes(title_text="y (m)", range=[-reach, reach], scaleanchor="x", scaleratio=1)
+        top_axes(fig, p)
         major = math.degrees(math.atan2(v.axes[1, 0], v.axes[0, 0]))
         notes = []
         if f is None:

@@ -14,11 +14,10 @@ from ..errors import ScaraError
 from ..plots.kinematics import top_view_arm
 from ..plots.trajectory import profiles_figure, profiles_series, segment_shapes, top_view_figure, top_view_series
 from ..trajectory import Waypoint, plan_path, reference_plan
-from ._common import LivePanel, PanelView, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, table
 
 __all__ = ["WaypointEditor", "waypoint_editor"]
 
-_STYLE = {"description_width": "initial"}
 _SELECTED = "#D55E00"
 #: samples drawn per curve: enough for the eye, few enough for the browser to redraw at once
 TOP_POINTS, PROFILE_POINTS = 600, 500
@@ -52,27 +51,27 @@ class WaypointEditor:
         w0, seg0 = wps[first], min(first, len(segs) - 1)
         durations = plan["durations"]
         ants = [w.anticipation for w in wps if w.via]
-        slide = dict(continuous_update=False, style=_STYLE, readout_format=".3f")
+        slide = dict(continuous_update=False, style=LABEL_STYLE, readout_format=".3f")
         reach = max(1.0, *(abs(v) for w in wps for v in w.position[:2]))
         controls = {
             "point": ipw.Dropdown(options=[(lab, i) for i, lab in enumerate(labels)], value=first,
-                                  description="waypoint", style=_STYLE),
-            "via": ipw.Checkbox(value=w0.via, description="via point (do not stop)", style=_STYLE),
+                                  description="waypoint", style=LABEL_STYLE),
+            "via": ipw.Checkbox(value=w0.via, description="via point (do not stop)", style=LABEL_STYLE),
             "x": ipw.FloatSlider(value=w0.position[0], min=-reach, max=reach, step=0.005, description="x (m)",
                                  **slide),
             "anticipation": ipw.FloatSlider(value=w0.anticipation or 1.0, min=0.1, max=max(5.0, *ants, 0.1),
                                             step=0.1, description="anticipation (s)", continuous_update=False,
-                                            style=_STYLE),
+                                            style=LABEL_STYLE),
             "y": ipw.FloatSlider(value=w0.position[1], min=-reach, max=reach, step=0.005, description="y (m)",
                                  **slide),
             "segment": ipw.Dropdown(options=[(s, j) for j, s in enumerate(segs)], value=seg0,
-                                    description="segment", style=_STYLE),
+                                    description="segment", style=LABEL_STYLE),
             "z": ipw.FloatSlider(value=w0.position[2], min=min(0.0, *(w.position[2] for w in wps)),
                                  max=max(1.0, *(w.position[2] for w in wps)), step=0.005, description="z (m)",
                                  **slide),
             "duration": ipw.FloatSlider(value=durations[seg0], min=min(0.1, *durations),
                                         max=max(20.0, *durations), step=0.1, description="duration (s)",
-                                        continuous_update=False, style=_STYLE),
+                                        continuous_update=False, style=LABEL_STYLE),
         }
         self.panel = LivePanel(controls, self._compute, self._draw,
                                title="Waypoint editor: edit the path, watch it re-planned", react=self._react)

@@ -1,7 +1,7 @@
 """Drive a real JupyterLab in Debian's Chromium, as a learner does: open a chapter, run all cells, move the
 controls of the live panels and watch the figures redraw.
 
-Used by ``tests/test_jupyterlab.py`` (which asserts) and ``benchmarks/live_panels.py`` (which times). The
+Used by ``tests/book/test_jupyterlab.py`` (which asserts) and ``benchmarks/live_panels.py`` (which times). The
 server is started on 127.0.0.1 with a free port and no token, on a temporary copy of the chapters (running
 them never touches the committed notebooks), with its own settings folder (no news pop-up, every cell kept in
 the page) and stopped afterwards. Nothing is fetched from outside this machine: every request that is not to
@@ -22,7 +22,7 @@ import urllib.request
 from contextlib import contextmanager
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 BOOK = ROOT / "book"
 CHROMIUM = os.environ.get("SCARA_CHROMIUM", "/usr/bin/chromium")
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",

@@ -1,4 +1,5 @@
-"""Agreement of scara with Peter Corke's Robotics Toolbox for Python and Pinocchio (issue 7).
+"""Agreement of scara with Peter Corke's Robotics Toolbox for Python and Pinocchio (the verification appendix,
+section The same robot in two other libraries).
 
 The comparisons need the optional extras (``pip install -r requirements-bench.txt``); without them those
 tests are skipped with the reason, so the main CI stays lean. The check of the stored
@@ -22,7 +23,7 @@ import scara
 from scara import ScaraParams
 from scara import dynamics as dyn
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH = os.path.join(ROOT, "benchmarks")
 TOL = 1e-10
 EXTRAS = "needs the optional extras: pip install -r requirements-bench.txt (roboticstoolbox-python, pin)"
@@ -60,8 +61,8 @@ def test_kinematics_agree(A):
             assert err < TOL, f"{lib} {what}: {err:.3e}"
 
 
-def test_base_transform_is_spec(A, L):
-    """Both models hang frame 0 at d0 with z0 down (SPEC section 2), and gravity points down the base z."""
+def test_base_transform_is_the_books(A, L):
+    """Both models hang frame 0 at d0 with z0 down (chapter 1, (eq-kin-base)), and gravity points down the base z."""
     p = ScaraParams()
     A0 = np.array([[1, 0, 0, 0], [0, -1, 0, 0], [0, 0, -1, p.d0], [0, 0, 0, 1.0]])
     robot = L.toolbox_robot(p)
@@ -70,7 +71,7 @@ def test_base_transform_is_spec(A, L):
     model, _ = L.pinocchio_model(p)
     assert np.array_equal(model.jointPlacements[1].homogeneous, A0)
     assert np.allclose(model.gravity.linear, [0, 0, -p.g0])
-    # the toolbox's DH table is SPEC's (a, alpha, d, theta), joint variables filled in
+    # the toolbox's DH table is chapter 1's (a, alpha, d, theta), joint variables filled in
     q = np.array([0.3, -1.1, 0.2, 0.7])
     for link, row in zip(robot.links, scara.dh_table(q, p)):
         a, alpha, d, theta = row
@@ -139,7 +140,7 @@ def test_libraries_model_rotors_as_diagonal_reflected_inertia(A, L):
 
 def test_rotor_coupling_from_rotor_kinetic_energy(A):
     """Independent derivation: rotor i spins at a_i . qd with a_1 = [k1,0,0,0], a_2 = [1,k2,0,0],
-    a_3 = [1,1,k3,0], a_4 = [1,1,0,k4] (SPEC section 3), so its share of B is I_mi a_i a_i^T."""
+    a_3 = [1,1,k3,0], a_4 = [1,1,0,k4] (chapter 5, (eq-dyn-rotors)), so its share of B is I_mi a_i a_i^T."""
     p = ScaraParams(k_r=(3.0, 7.0, 40.0, 11.0), I_m=(0.02, 0.03, 0.004, 0.002))  # distinct numbers
     k, Im = p.k_r, p.I_m
     a = np.array([[k[0], 0, 0, 0], [1, k[1], 0, 0], [1, 1, k[2], 0], [1, 1, 0, k[3]]])

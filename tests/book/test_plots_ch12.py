@@ -16,7 +16,8 @@ from scara import NonFiniteError, ScaraError, ScaraParams, UnreachableError, fki
 from scara.plots import (arm_figure, determinant_figure, duality_figure, ellipse_slider_figure,
                          inverse_kinematics_figure, joint_slider_figure, manipulability_map_figure,
                          reference_ellipses_figure, workspace_ellipses_figure)
-from scara.plots.kinematics import PHONE_PLOT_WIDTH, arm_geometry, legend_entries, legend_rows
+from scara.plots.kinematics import arm_geometry
+from scara.plots.layout import legend_entries
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
 from scara.plots.manipulability import REFERENCE_CONFIGURATIONS, ellipse_xy, workspace_points
@@ -47,7 +48,7 @@ def _strokes(x, y):
 
 
 def _closed_form_position(q):
-    """Independent of scara: SPEC section 2 written out."""
+    """Independent of scara: equation (eq-kin-xe) of chapter 1 written out."""
     t1, t2, d3 = q[0], q[1], q[2]
     return np.array([P.a1 * math.cos(t1) + P.a2 * math.cos(t1 + t2),
                      -(P.a1 * math.sin(t1) + P.a2 * math.sin(t1 + t2)), P.d0 - d3])
@@ -159,7 +160,7 @@ def test_ellipse_xy_at_a_singularity_is_a_segment_and_a_strip():
         ellipse_xy(velocity_ellipsoid(q, rows=(0, 1)), 0.0)
 
 
-def test_reference_ellipses_figure_steps_carry_the_spec_table():
+def test_reference_ellipses_figure_steps_carry_the_books_table():
     fig = reference_ellipses_figure()
     (sl,) = fig.layout.sliders
     assert [s.label for s in sl.steps] == ["q1", "q2", "q3", "q4", "q5"]
@@ -296,7 +297,7 @@ def test_manipulability_panel_reports_bad_scale():
         manipulability_panel(scale=-1.0)
 
 
-def test_reference_configurations_are_the_spec_ones():
+def test_reference_configurations_are_the_books_ones():
     assert np.allclose(np.array(list(REFERENCE_CONFIGURATIONS.values()))[:, 1],
                        [-math.pi / 2, math.pi / 4, math.pi / 30, 0.98 * math.pi, -0.9999 * math.pi])
 
@@ -359,7 +360,7 @@ def test_path_figure_passes_through_the_stop_points(traj):
         assert np.min(np.linalg.norm(path - traj.waypoints[i], axis=1)) < 1e-5
     (arc,) = [t for t in fig.data if t.name.startswith("arc")]
     pts = np.array([arc.x, arc.y, arc.z], float).T
-    assert np.allclose(np.linalg.norm(pts - [0.23, 0.20, 0.5], axis=1), 0.05, atol=1e-4)  # SPEC section 4
+    assert np.allclose(np.linalg.norm(pts - [0.23, 0.20, 0.5], axis=1), 0.05, atol=1e-4)  # the arc of the reference scenario, chapter 3
     assert {t.name for t in fig.data} >= {"path", "stop point", "via point"}
     with pytest.raises(ScaraError, match="Trajectory"):
         path_figure("not a trajectory")
@@ -509,21 +510,3 @@ def test_styles_survive_greyscale(figures):
     assert len({dash(t) for t in comps}) == 4
     joints = [t for t in figures["joints"].data if t.name in ("θ1", "θ2", "d3", "θ4")]
     assert len({dash(t) for t in joints}) == 4
-
-
-def test_legend_rows_matches_plotly_wrapping():
-    from scara.plots.kinematics import _text_width
-
-    # legend entry widths (px, 12 px font) measured in Chromium on the built book: the estimate may be long
-    # (reserving a little too much room) but never short by more than a pixel (which would let the legend
-    # overlap the plot on a phone)
-    measured = {"arm": 63.2, "θ2 = 60°": 87.9, "velocity ellipse": 120.2, "workspace boundary": 154.2,
-                "σ1 (velocity)": 107.9, "stretched: w = 0, r = 1 m": 171.9, "φ": 50.5, "end effector": 105.7}
-    for name, width in measured.items():
-        assert -1.0 <= 44 + _text_width(name) - width <= 9.0, (name, 44 + _text_width(name), width)
-    # entries fit on one row when their total width fits, else in equal columns as wide as the widest entry
-    assert legend_rows(["arm", "x axes", "y axes"]) == 1
-    assert legend_rows(["velocity ellipse (x 0.15)", "force ellipse (x 0.15)", "arm"]) == 3
-    assert legend_rows(["σ1 (velocity)", "σ2 (velocity)", "1/σ1 (force)", "1/σ2 (force)", "θ2 = 60°"]) == 3
-    assert legend_rows(["a" * 10] * 6, plot_width=700) == 1 and legend_rows([]) == 0
-    assert 220 <= PHONE_PLOT_WIDTH <= 240  # measured: 227 to 232 px on a 360 px page

@@ -21,7 +21,7 @@ import pytest
 
 from jupyterlab_driver import ARGS, CHROMIUM  # one place for the browser's path and flags
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))  # another build can be tested
 SHOTS = HTML.parent / "screenshots"
 IN_CI = os.environ.get("CI", "").lower() == "true"

@@ -18,7 +18,7 @@ from scara.plots.control import CONTROLLER_LABELS, CONTROLLER_DASHES
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 P5 = scara.ScaraParams().with_payload(5.0)
 #: stacked panels sharing one time axis (three or four of them) may be taller than the default 560 px; 780 px
 #: still fits a laptop screen with the browser's bars

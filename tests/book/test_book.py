@@ -1,12 +1,14 @@
-"""The book's notebooks follow the project's conventions (DESIGN.md, Notebooks): checked statically, so a
-chapter that forgets one fails here with a clear message before the build or the browser test runs."""
+"""The book's notebooks follow the conventions checked below (outputs cleared, a hidden assert cell, a live panel,
+folded solutions, glued numbers, labels that resolve, citations in references.bib, sources a reader can open):
+checked statically, so a chapter that forgets one fails here with a clear message before the build or the browser
+test runs."""
 import json
 import re
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 TOC = (ROOT / "_toc.yml").read_text()
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
 
@@ -93,3 +95,16 @@ def test_cited_keys_are_in_the_bibliography():
         for group in re.findall(r"\{cite(?::\w+)?\}`([^`]+)`", t):
             cited |= {k.strip() for k in group.split(",")}
     assert cited <= bib, f"cited but not in references.bib: {sorted(cited - bib)}"
+
+
+#: wording that points at a document outside the repository (a reader of the book cannot open it)
+_OUTSIDE = re.compile(r"\bSPEC\b|DESIGN\.md|\bthe issue\b|\bissues? \d|\bthe (?:project's )?specification\b", re.I)
+
+
+def test_sources_are_in_the_repository():
+    """Text and code of every page cite the book's own sections and equations, the textbook, or the page that
+    states the data, never a document outside the repository."""
+    pages = {nb.name: "\n".join(_src(c) for c in _cells(nb)) for nb in NOTEBOOKS}
+    pages.update({md.name: md.read_text() for md in (ROOT / "book").glob("*.md")})
+    found = [f"{name}: {m.group(0)!r}" for name, text in pages.items() for m in _OUTSIDE.finditer(text)]
+    assert not found, "pointers outside the repository: " + ", ".join(found)

@@ -1,7 +1,7 @@
-"""Chapter 6 controllers (scara.control) on the 70 s reference with the 5 kg payload in the plant, unknown to
-every controller: the issue's tracking targets, the theory each design rests on (Lyapunov equation, sliding
-variable, inertia uncertainty alpha, boundary-layer sampling limit, steady-state errors), each compiled law
-against an independent numpy implementation, the stated bounds, the error cases and the plain-Python path."""
+"""Tests of scara.control._common (chapter 6): what the three controllers share, on the 70 s reference with the
+5 kg payload in the plant, unknown to every controller: the stated bounds, each compiled law against an
+independent numpy implementation (replayed on the recorded closed loop), the measures (chattering, summary,
+cost), the error cases, the plain-Python path, and the chapter's figures and live panel."""
 import json
 import math
 import os
@@ -10,104 +10,19 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
 
 from scara import (
-    AdaptiveController, OperationalSpaceController, RobustController, ScaraError, ScaraParams, ShapeError,
-    UnstableError, clik2, coriolis, gravity, inertia, jacobian, jacobian_dot, pose, reference_trajectory, simulate,
+    AdaptiveController, OperationalSpaceController, RobustController, ScaraError, ShapeError, UnstableError,
+    coriolis, gravity, inertia, jacobian, jacobian_dot, pose, simulate,
 )
-from scara.control import (
-    B_HAT, TAU_MAX, adaptation_gains, chattering, control_summary, design_inertia_estimate, inertia_eigenvalues,
-    inertia_uncertainty, law_cost, lyapunov_matrix, replay_law, rho_bound, sliding_weight,
-)
-from scara.dynamics import PI_NAMES
+from scara.control import TAU_MAX, chattering, control_summary, law_cost, replay_law
 
-P0 = ScaraParams()
-P5 = ScaraParams().with_payload(5.0)
-G0 = P0.g0
-
-
-@pytest.fixture(scope="module")
-def traj():
-    return reference_trajectory()
-
-
-@pytest.fixture(scope="module")
-def jref(traj):
-    return clik2(traj)
-
-
-@pytest.fixture(scope="module")
-def runs(traj, jref):
-    """The four runs of the chapter's comparison table, payload 5 kg."""
-    ctrls = {"robust": RobustController(), "adaptive": AdaptiveController(),
-             "operational": OperationalSpaceController(), "operational_noint": OperationalSpaceController(integral=False)}
-    out = {}
-    for name, c in ctrls.items():
-        out[name] = (c, simulate(c, traj, P5, joint_reference=jref if c.reference_kind == "joint" else None))
-    return out
-
-
-def _pos_err(res):
-    return np.linalg.norm(res.e[:, :3], axis=1)
-
-
-def _after(res, t0=1.0):
-    return res.t >= t0 - 1e-12
-
-
-def _rest(res, window=2.0):
-    return res.t >= res.t[-1] - window + 1e-12
+from _control_shared import G0, P0, P5
 
 
 # --------------------------------------------------------------------------------------------------
-# the issue's targets
+# the tracking targets of chapter 6
 # --------------------------------------------------------------------------------------------------
-def test_robust_keeps_the_error_below_half_a_millimetre(runs):
-    c, r = runs["robust"]
-    assert c.reference_kind == "joint" and r.q_d is not None
-    assert _pos_err(r)[_after(r)].max() <= 0.5e-3
-
-
-def test_adaptive_error_and_payload_estimate(runs):
-    c, r = runs["adaptive"]
-    assert _pos_err(r)[_after(r)].max() <= 0.1e-3
-    est = r.payload_estimate
-    assert est[0] == 0.0  # the initial estimate has no payload
-    assert np.abs(est[r.t >= 2.0] - 5.0).max() <= 0.25
-    assert abs(c.final_estimate(r)[0] - (P0.m_l3 + 5.0)) <= 0.25
-
-
-def test_operational_integral_removes_the_steady_state_error(runs):
-    _, ri = runs["operational"]
-    _, rn = runs["operational_noint"]
-    final_i = _pos_err(ri)[_rest(ri)].max()
-    assert final_i <= 0.01e-3
-    final_n = _pos_err(rn)[_rest(rn)].max()
-    assert final_n >= 100 * final_i
-
-
-def test_vertical_error_without_integral_matches_spec_formula(runs):
-    """SPEC section 5: e_z = m_L g0 / (B33_hat K_P,z), B33_hat = m_l3 + k_r3^2 I_m3 (payload-free). Binding
-    tolerance 5 %; the full prediction K_P^-1 J_A B_hat^-1 (g - g_hat) (which keeps the rotor coupling
-    B13 = B23, 3e-4 relative) must hold to 1e-3: the rest window starts 2 s after the stop, when the transient
-    (slowest pole near 26 rad/s) is below 1e-20 of its start."""
-    c, r = runs["operational_noint"]
-    B33_hat = inertia([0, -1.0, 0.5, 0], P0)[2, 2]
-    assert B33_hat == pytest.approx(P0.m_l3 + P0.k_r[2] ** 2 * P0.I_m[2])
-    formula = P5.m_L * G0 / (B33_hat * c.K_P[2])
-    ez = r.e[_rest(r), 2]
-    assert np.ptp(ez) < 1e-3 * formula  # the arm is still
-    assert ez.mean() == pytest.approx(formula, rel=0.05)
-    q_end = r.q[-1]
-    assert ez.mean() == pytest.approx(c.steady_state_error(P5, q_end)[2], rel=1e-3)
-    # x, y and phi carry only what the coupling B13 = B23 of motor 3's rotor brings (about 1 % of e_z)
-    pred = c.steady_state_error(P5, q_end)
-    np.testing.assert_allclose(r.e[_rest(r)].mean(axis=0), pred, rtol=0, atol=1e-3 * formula)
-    assert np.abs(pred[[0, 1, 3]]).max() < 0.02 * formula
-
-
 @pytest.mark.parametrize("name", ["robust", "adaptive", "operational", "operational_noint"])
 def test_torques_finite_and_within_the_stated_bounds(runs, name):
     c, r = runs[name]
@@ -116,104 +31,6 @@ def test_torques_finite_and_within_the_stated_bounds(runs, name):
     assert np.array_equal(c.tau_max, np.asarray(TAU_MAX))
     # the quill holds its own weight and the payload: about (m_l3 + m_L) g0
     assert np.abs(r.tau[:, 2]).max() > (P0.m_l3 + 5.0) * G0 * 0.95
-
-
-# --------------------------------------------------------------------------------------------------
-# robust control: the Lyapunov equation, the sliding variable, alpha, rho, the boundary layer
-# --------------------------------------------------------------------------------------------------
-@given(kp=st.floats(1.0, 1e4), kd=st.floats(1.0, 500.0), frac=st.floats(0.01, 0.99))
-def test_sliding_weight_gives_the_sliding_variable(kp, kd, frac):
-    """Closed form (by hand, one joint): H^T Q + Q H = -diag(p1, p2) gives Q12 = p1 / (2 k_p) and
-    Q22 = (Q12 + p2 / 2) / k_d, so P = diag(2 k_p lambda, 2 (k_d - lambda)) makes D^T Q xi = qt_dot + lambda qt."""
-    lam = frac * kd
-    P = sliding_weight(kp, kd, lam)
-    Q = lyapunov_matrix(kp, kd, P)
-    H = np.block([[np.zeros((4, 4)), np.eye(4)], [-kp * np.eye(4), -kd * np.eye(4)]])
-    assert np.abs(H.T @ Q + Q @ H + P).max() <= 1e-9 * np.abs(P).max()
-    assert np.linalg.eigvalsh(Q).min() > 0
-    Z = Q[4:, :]
-    np.testing.assert_allclose(Z, np.hstack([lam * np.eye(4), np.eye(4)]), atol=1e-9 * max(1.0, lam))
-    # the remaining entry: Q11 = k_p + k_d lambda
-    assert Q[0, 0] == pytest.approx(kp + kd * lam, rel=1e-9)
-
-
-@given(seed=st.integers(0, 2 ** 31 - 1))
-def test_lyapunov_matrix_general_weight(seed):
-    rng = np.random.default_rng(seed)
-    kp, kd = rng.uniform(10, 2000, 4), rng.uniform(5, 200, 4)
-    A = rng.normal(size=(8, 8))
-    P = A @ A.T + 0.1 * np.eye(8)
-    Q = lyapunov_matrix(kp, kd, P)
-    H = np.block([[np.zeros((4, 4)), np.eye(4)], [-np.diag(kp), -np.diag(kd)]])
-    assert np.abs(H.T @ Q + Q @ H + P).max() <= 1e-8 * np.abs(P).max()
-    assert np.linalg.eigvalsh(Q).min() > 0
-    c = RobustController(K_P=kp, K_D=kd, P=P)
-    np.testing.assert_allclose(c.sliding, Q[4:, :], atol=1e-12 * np.abs(Q).max())
-
-
-def test_default_robust_design(jref):
-    c = RobustController()
-    np.testing.assert_allclose(c.sliding, np.hstack([30 * np.eye(4), np.eye(4)]), atol=1e-9)
-    q = jref.q[::1000]
-    alpha = inertia_uncertainty(B_HAT, q, payloads=(0.0, 5.0, 10.0))
-    assert 0.75 < alpha < 0.85
-    # the plain diagonal of B breaks the condition alpha < 1
-    assert inertia_uncertainty(np.diag(inertia(q.mean(axis=0))), q) > 1.0
-    # the search reproduces the stored entries' alpha (joint 3's entry is free over a wide range)
-    bh, a_opt = design_inertia_estimate(q[::5])
-    assert a_opt <= inertia_uncertainty(B_HAT, q[::5]) + 1e-9
-    assert inertia_uncertainty(B_HAT, q[::5]) - a_opt < 0.01
-    np.testing.assert_allclose(bh[[0, 1]], np.asarray(B_HAT)[[0, 1]], rtol=0.03)
-    # rho covers a 10 kg payload by the Lyapunov bound
-    eta0 = max(np.linalg.norm(np.linalg.solve(inertia(qk, P0.with_payload(10.0)), [0, 0, 10.0 * G0, 0])) for qk in q)
-    qdd_max = np.linalg.norm(jref.qdd, axis=1).max()
-    assert rho_bound(alpha, qdd_max, eta0) < c.rho
-    with pytest.raises(UnstableError, match="alpha"):
-        rho_bound(1.2, qdd_max, eta0)
-
-
-def test_robust_static_error_matches_the_boundary_layer_theory(runs):
-    """Inside the layer at rest: B33_hat (K_P3 qt3 + (rho / epsilon) Lambda_3 qt3) = g3_hat - g3, so
-    e_z = -qt3 = m_L g0 / (B33_hat (K_P3 + rho Lambda_3 / epsilon))."""
-    c, r = runs["robust"]
-    expect = 5.0 * G0 / (c.B_hat[2] * (c.K_P[2] + c.rho * c.Lambda[2] / c.epsilon))
-    assert r.z_norm[_rest(r)].max() < c.epsilon  # inside the layer
-    assert r.e[_rest(r), 2].mean() == pytest.approx(expect, rel=1e-3)
-
-
-def test_robust_term_covers_the_uncertainty(runs):
-    c, r = runs["robust"]
-    eta = np.linalg.norm(c.uncertainty(r), axis=1)
-    assert eta.max() < c.rho
-    # the arm moves slowly, so qdd is small and eta = y - qdd is mostly the acceleration y that makes
-    # B_hat y cover the missing weight: ||eta|| near m_L g0 / B33_hat
-    assert np.median(eta) == pytest.approx(5.0 * G0 / c.B_hat[2], rel=0.02)
-
-
-def test_boundary_layer_chatters_below_the_sampling_bound(traj, jref):
-    """epsilon_bound predicts where the sampled layer loses stability; 20 % below it the torque switches
-    every sample (second difference of hundreds of N), 20 % above it stays smooth."""
-    c = RobustController()
-    lo, hi = inertia_eigenvalues(c.B_hat, jref.q[::500], payloads=(5.0,))
-    assert 0 < lo < 1 < hi < 1 + inertia_uncertainty(c.B_hat, jref.q[::500], payloads=(5.0,)) + 1e-9
-    bound = c.epsilon_bound(hi)
-    assert bound == pytest.approx(hi * c.rho * 1e-3 / (2 - hi * c.K_D.max() * 1e-3))
-    assert c.epsilon > 2 * bound  # the book's default has margin
-    smooth = simulate(RobustController(epsilon=1.2 * bound), traj, P5, joint_reference=jref)
-    rough = simulate(RobustController(epsilon=0.8 * bound), traj, P5, joint_reference=jref)
-    assert chattering(rough) > 100 * chattering(smooth)
-    assert chattering(rough) > 10.0
-    assert np.all(np.abs(rough.tau) <= np.asarray(TAU_MAX))
-    with pytest.raises(UnstableError, match="K_D"):
-        RobustController(K_D=3000.0, Lambda=30.0).epsilon_bound(1.0)
-
-
-def test_robust_error_grows_linearly_with_the_payload(traj, jref):
-    e = {}
-    for m in (2.5, 10.0):
-        r = simulate(RobustController(), traj, P0.with_payload(m), joint_reference=jref)
-        e[m] = r.e[_rest(r), 2].mean()
-    assert e[10.0] == pytest.approx(4 * e[2.5], rel=1e-3)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -282,29 +99,6 @@ def test_compiled_law_matches_numpy(runs, name):
         k_prev = k
     assert k_prev > 0
     assert worst < 1e-9 * max(1.0, np.abs(r.tau).max())
-
-
-def test_adaptation_gains_choose_what_adapts():
-    g = adaptation_gains(0.5)
-    assert g[0] == 2.0 and np.all(g[1:] == 0)
-    g = adaptation_gains({"m3": 0.5, "F3": 4.0})
-    assert g[PI_NAMES.index("F3")] == 0.25 and np.count_nonzero(g) == 2
-    v = np.full(13, np.inf)
-    v[[0, 11]] = 1.0
-    assert np.count_nonzero(adaptation_gains(v)) == 2
-    assert AdaptiveController(K_pi={"m3": 0.01, "F3": 1.0}).adapted == ("m3", "F3")
-    assert AdaptiveController().adapted == ("m3",)
-
-
-def test_adaptive_with_more_parameters_still_tracks(traj, jref):
-    """Letting the quill's friction adapt too (its true value is known, so its estimate must stay put while
-    the payload is learnt)."""
-    c = AdaptiveController(K_pi={"m3": 0.01, "F3": 1.0})
-    r = simulate(c, traj, P5, joint_reference=jref)
-    assert _pos_err(r)[_after(r)].max() <= 0.1e-3
-    pi_end = c.final_estimate(r)
-    assert abs(pi_end[0] - 15.0) < 0.25
-    assert abs(pi_end[PI_NAMES.index("F3")] - P0.F[2]) < 0.05 * P0.F[2]
 
 
 # --------------------------------------------------------------------------------------------------
@@ -405,12 +199,6 @@ def test_error_beyond_its_bound_stops_the_run(traj):
     assert np.abs(full.e[k]).max() > 1e-3 >= np.abs(full.e[:k]).max()
 
 
-def test_adaptation_too_fast_diverges(traj, jref):
-    c = AdaptiveController(K_pi=1e-7)
-    with pytest.raises(UnstableError, match=r"diverged at t = \d+\.\d+ s.*(max_error|tau_max)"):
-        c.run(traj, P5, joint_reference=jref)
-
-
 # --------------------------------------------------------------------------------------------------
 # the plain-Python path
 # --------------------------------------------------------------------------------------------------
@@ -480,21 +268,6 @@ def test_figures_have_titles_units_and_legends(runs):
         payload_sweep_figure([0, 5], {"robust": [1.0]})
 
 
-def test_boundary_layer_slider_steps_switch_runs(traj, jref):
-    from scara.plots import boundary_layer_slider_figure
-
-    eps = (0.01, 0.05)
-    fig = boundary_layer_slider_figure({e: simulate(RobustController(epsilon=e), traj, P5, joint_reference=jref)
-                                        for e in eps}, bound=0.0159)
-    steps = fig.layout.sliders[0].steps
-    assert len(steps) == len(eps)
-    per = len(fig.data) // len(eps)
-    for n, step in enumerate(steps):
-        vis = step.args[0]["visible"]
-        assert vis == [per * n <= i < per * (n + 1) for i in range(len(fig.data))]
-        assert ("chatters" in step.args[1]["title.text"]) == (eps[n] <= 0.0159)
-
-
 def test_live_panel_re_simulates_and_reports_errors(traj):
     from scara.widgets import control_panel
     from scara.widgets.control import make_controller
@@ -516,22 +289,3 @@ def test_live_panel_re_simulates_and_reports_errors(traj):
     assert isinstance(c, OperationalSpaceController) and not c.integral
     c = make_controller("adaptive (Slotine-Li)", 900, 60, 30, 20, 0.05, 2.0, 0.01, 8000)
     assert np.allclose(c.K_D, [1200, 600, 2000, 120]) and c.K_pi_inv[0] == 100.0
-
-
-def test_operational_law_refuses_a_singular_jacobian():
-    """At theta2 = 0 (arm stretched) J_A is singular: the law returns code 4 instead of dividing by zero."""
-    from types import SimpleNamespace as NS
-
-    from scara.control import SINGULAR_JACOBIAN
-
-    c = OperationalSpaceController()
-    q = np.array([[0.3, 0.0, 0.5, 0.0]])
-    x = pose(q[0])
-    res = NS(t=np.zeros(1), q=q, qd=np.zeros((1, 4)), reference=np.concatenate([x, np.zeros(8)])[None, :], dt=1e-3)
-    with pytest.raises(UnstableError, match="sample 0"):
-        replay_law(c, res)
-    assert "singular" in c.explain(SINGULAR_JACOBIAN)
-    res.q = np.array([[0.3, 1e-3, 0.5, 0.0]])  # slightly bent: fine
-    res.reference = np.concatenate([pose(res.q[0]), np.zeros(8)])[None, :]
-    tau, _, _ = replay_law(c, res)
-    assert np.all(np.isfinite(tau))

@@ -30,7 +30,7 @@ import pytest
 import jupyterlab_driver as lab_driver
 
 IN_CI = os.environ.get("CI", "").lower() == "true"
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 RESULTS = ROOT / "_build" / "live_panels.json"
 STALE_TITLE = "Not current: this setting was refused (see the message above)"
 
@@ -195,7 +195,7 @@ def check_dynamics(values, figs):
 def check_control(values, figs, traj, jref):
     from scara import ScaraParams
     from scara.control import control_summary
-    from scara.plots.control import _label
+    from scara.plots._common import run_label as _label
     from scara.widgets.control import make_controller
 
     keys = ("K_P", "K_D", "Lambda", "rho", "epsilon", "K_D_scale", "K_pi", "K_I")
@@ -321,9 +321,9 @@ def test_live_panels(chapter, lab_url, browser, record):
         lab.open(chapter)
         record["run_all"][chapter] = lab.run_all()
         assert lab.cell_errors() == [], f"{chapter}: cells failed"
-        specs = PANELS[chapter]
+        wanted_panels = PANELS[chapter]
         panels = lab.panels()
-        assert panels.count() == len(specs), f"{chapter}: {panels.count()} live panels, expected {len(specs)}"
+        assert panels.count() == len(wanted_panels), f"{chapter}: {panels.count()} live panels, expected {len(wanted_panels)}"
         # every figure of a panel's cell is inside the panel
         for k in range(panels.count()):
             cell = panels.nth(k).locator("xpath=ancestor::div[contains(@class, 'jp-Cell')][1]")
@@ -333,15 +333,15 @@ def test_live_panels(chapter, lab_url, browser, record):
             assert panels.nth(k).locator(".js-plotly-plot").count() >= 1, f"{chapter}: panel {k} shows no figure"
         ref = _ref() if chapter in ("04_clik.ipynb", "06_control.ipynb") else None
         lab.instrument()
-        for k, spec in enumerate(specs):
+        for k, wanted in enumerate(wanted_panels):
             panel = panels.nth(k)
             panel.scroll_into_view_if_needed()
             figs0 = lab.figures(panel)
-            spec["check"](lab.values(panel), figs0, ref)  # the figure as first drawn
-            for desc, action, arg in spec["moves"]:
-                _move(lab, panel, spec, chapter, desc, action, arg, ref, record, refused=False)
-            for desc, action, arg, expect in spec["refuse"] or []:
-                _move(lab, panel, spec, chapter, desc, action, arg, ref, record, refused=expect)
+            wanted["check"](lab.values(panel), figs0, ref)  # the figure as first drawn
+            for desc, action, arg in wanted["moves"]:
+                _move(lab, panel, wanted, chapter, desc, action, arg, ref, record, refused=False)
+            for desc, action, arg, expect in wanted["refuse"] or []:
+                _move(lab, panel, wanted, chapter, desc, action, arg, ref, record, refused=expect)
         assert lab.page_errors == [], f"{chapter}: page errors {lab.page_errors[:3]}"
         unexpected = [e for e in lab.console_errors if not KNOWN_MARKDOWN_GAPS.match(e.strip())]
         assert unexpected == [], f"{chapter}: console errors {unexpected[:3]}"
@@ -359,7 +359,7 @@ def test_live_panels(chapter, lab_url, browser, record):
         lab.close()
 
 
-def _move(lab, panel, spec, chapter, desc, action, arg, ref, record, refused):
+def _move(lab, panel, wanted, chapter, desc, action, arg, ref, record, refused):
     box = _control(lab.page, panel, desc)
     box.scroll_into_view_if_needed()
     before = lab.state(panel)
@@ -370,7 +370,7 @@ def _move(lab, panel, spec, chapter, desc, action, arg, ref, record, refused):
     values = state["values"]
     figs = lab.figures(panel)
     message = lab.message(panel)
-    where = f"{chapter} / {spec['name']} / {desc} {action} {arg}"
+    where = f"{chapter} / {wanted['name']} / {desc} {action} {arg}"
     if refused not in (False, None):
         assert message, f"{where}: no message for a refused setting"
         for piece in refused:
@@ -379,9 +379,9 @@ def _move(lab, panel, spec, chapter, desc, action, arg, ref, record, refused):
     else:
         assert message == "", f"{where}: unexpected message {message!r}"
         assert not any(f["stale"] for f in figs), f"{where}: figure still marked stale"
-        spec["check"](values, figs, ref)
-    record["moves"].append(dict(chapter=chapter[:2], panel=spec["name"], control=desc, action=action,
-                                three_d=spec["three_d"], refused=refused not in (False, None),
+        wanted["check"](values, figs, ref)
+    record["moves"].append(dict(chapter=chapter[:2], panel=wanted["name"], control=desc, action=action,
+                                three_d=wanted["three_d"], refused=refused not in (False, None),
                                 latency_ms=timing["latency_ms"], redraws=timing["redraws"],
                                 compute_ms=state.get("compute_ms"), python_ms=sum(state.get(k, 0.0) for k in
                                                                                  ("compute_ms", "draw_ms", "send_ms"))))

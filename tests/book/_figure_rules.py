@@ -1,11 +1,11 @@
-"""The book's reading rules for a figure (issue: figures a reader can use), shared by the figure tests of every
+"""The book's reading rules for a figure (figures a reader can use), shared by the figure tests of every
 chapter: a height that fits a laptop screen, titles short enough for a phone-width page, a legend that names
 what is drawn with room reserved for it as it wraps, and an axis title with a unit on every axis in use."""
 from __future__ import annotations
 
 import re
 
-from scara.plots.kinematics import legend_entries, legend_rows
+from scara.plots.layout import legend_entries, legend_rows
 
 _UNIT = re.compile(r"\(.+\)")
 

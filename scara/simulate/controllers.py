@@ -1,0 +1,103 @@
+"""The two controllers of chapter 5 that come with the engine: PD control with gravity compensation (the
+worked example of the interface) and a constant torque (open loop)."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._compile import ArrayLayout
+from ..dynamics import gravity_kernel
+from ..errors import as_array
+from ..gains import gain_vector
+from ..kinematics import _params
+from ..params import ScaraParams
+from .interface import OK, Controller, control_law
+
+__all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "PD_GAINS", "TORQUE_GAINS"]
+
+#: The gain arrays of the two controllers below.
+PD_GAINS = ArrayLayout(("K_P", 4), ("K_D", 4))
+_PD_KP, _PD_KD = PD_GAINS.offsets
+TORQUE_GAINS = ArrayLayout(("tau", 4))
+(_TORQUE,) = TORQUE_GAINS.offsets
+
+
+@control_law
+def pd_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    """PD plus gravity compensation (Siciliano et al. eq. 8.53): ``tau = K_P (q_d - q) + K_D (qd_d - qd) +
+    g_hat(q)``, with ``gains = [K_P(4), K_D(4)]`` and ``g_hat`` from the controller's ``model``.
+    ``signals = [g_hat_3]`` (the compensated quill weight, N)."""
+    g = work[0]
+    gravity_kernel(q, model, g)
+    for i in range(4):
+        tau[i] = gains[_PD_KP + i] * (ref[i] - q[i]) + gains[_PD_KD + i] * (ref[4 + i] - qd[i]) + g[i]
+    signals[0] = g[2]
+    return OK
+
+
+@control_law
+def torque_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    """Open loop: a constant torque ``tau = gains[0:4]`` (zero for free motion)."""
+    for i in range(4):
+        tau[i] = gains[_TORQUE + i]
+    return OK
+
+
+class PDGravityController(Controller):
+    """PD control with gravity compensation in joint space (chapter 5; Siciliano et al., sec. 8.5.1).
+
+    ``tau = K_P (q_d - q) + K_D (qd_d - qd) + g_hat(q)``, with ``g_hat`` from ``model`` (default
+    ``ScaraParams()``: no payload). Held at a set point, the loop settles where ``K_P e = g(q) - g_hat(q)``:
+    with an unknown payload ``m_L`` the quill sags by ``e_3 = q_d3 - q_3 = -m_L g0 / K_P3`` (so
+    ``e_z = m_L g0 / K_P3``); the other joints have no error.
+
+    Parameters
+    ----------
+    K_P, K_D : 4 gains (vector or diagonal matrix), N m/rad and N m s/rad (N/m and N s/m for joint 3);
+        default ``K_P = diag(10000, 4000, 10000, 600)``, ``K_D = diag(1000, 400, 1000, 60)``: natural
+        frequencies near 20 rad/s for the arm's inertia.
+    model : ScaraParams, the controller's belief (only ``m3`` and ``g0`` matter here).
+
+    >>> c = PDGravityController()
+    >>> c.gains_array()[:4]
+    array([10000.,  4000., 10000.,   600.])
+    """
+
+    law = staticmethod(pd_gravity_law)
+    name = "pd_gravity"
+    reference_kind = "joint"
+    signal_names = ("gravity_compensation",)
+    work_rows = 1
+
+    def __init__(self, K_P=(10000.0, 4000.0, 10000.0, 600.0), K_D=(1000.0, 400.0, 1000.0, 60.0),
+                 model: ScaraParams | None = None):
+        self.K_P = gain_vector(K_P, "K_P", rule="nonnegative")
+        self.K_D = gain_vector(K_D, "K_D", rule="nonnegative")
+        self.model = _params(model)
+
+    def gains_array(self) -> np.ndarray:
+        return PD_GAINS.pack(K_P=self.K_P, K_D=self.K_D)
+
+    def steady_state_error(self, plant: ScaraParams) -> np.ndarray:
+        """Theoretical joint error ``q_d - q`` at rest: ``K_P^-1 (g_hat - g)``, i.e. only joint 3 errs by
+        ``(m3_hat - m3) g0 / K_P3`` (m), shape (4,)."""
+        plant = _params(plant)
+        e = np.zeros(4)
+        e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf
+        return e
+
+    def __repr__(self):
+        return f"PDGravityController(K_P={self.K_P.tolist()}, K_D={self.K_D.tolist()})"
+
+
+class TorqueController(Controller):
+    """Open loop: a constant joint torque (default zero: the arm moves freely under gravity and friction)."""
+
+    law = staticmethod(torque_law)
+    name = "torque"
+    reference_kind = "none"
+
+    def __init__(self, tau=(0.0, 0.0, 0.0, 0.0)):
+        self.tau = as_array(tau, "tau", (4,)).copy()
+
+    def gains_array(self) -> np.ndarray:
+        return TORQUE_GAINS.pack(tau=self.tau)

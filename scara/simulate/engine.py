@@ -1,0 +1,230 @@
+"""The engine of the closed loop (chapter 5): the compiled loop over the samples and :func:`simulate`, the
+public entry point that checks its inputs, builds the references, runs the loop and assembles the result."""
+from __future__ import annotations
+
+import math
+import time
+from collections import namedtuple
+
+import numpy as np
+
+from .. import _compile
+from ..dynamics import dynamic_array
+from ..errors import ScaraError, UnstableError, check_positive
+from ..kinematics import _params
+from ..params import ScaraParams
+from .interface import _LAW_TYPE, DIVERGED, LAW_FAILED, OK, SINGULAR_INERTIA, _compiled_law
+from .plant import _plant_acceleration, _plant_constants, _rk4_step
+from .reference import _references, _start_state
+from .result import SimulationResult, _pose_error
+
+__all__ = ["closed_loop_kernel", "simulate"]
+
+#: The controller's arrays the loop hands to the law at every sample (see the package's docstring).
+LawData = namedtuple("LawData", ("gains", "model", "state", "work"))
+#: What the loop records, one row per sample: ``q, qd, qdd, tau`` (N, 4) and the law's signals (N, n_sig).
+Series = namedtuple("Series", ("q", "qd", "qdd", "tau", "signals"))
+#: The run's settings: sampling period (s), RK4 steps per period, and the bound on any state or torque entry.
+Stepping = namedtuple("Stepping", ("dt", "substeps", "limit"))
+
+if _compile.COMPILED:
+    from numba import types as _t
+
+    _v = _t.float64[::1]
+    _m = _t.float64[:, ::1]
+    _STEPPING = _t.NamedTuple((_t.float64, _t.int64, _t.float64), Stepping)
+    _LOOP_SIGNATURE = _t.void(_LAW_TYPE, _t.UniTuple(_v, 2), _m, _STEPPING, _v,
+                              _t.NamedTuple((_v, _v, _v, _m), LawData), _t.NamedUniTuple(_m, 5, Series), _t.int64[::1])
+else:  # pragma: no cover - plain Python
+    _LOOP_SIGNATURE = None
+
+
+@_compile.signature_kernel(_LOOP_SIGNATURE)
+def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
+    """The engine's loop over ``N = ref.shape[0]`` samples (see the package's docstring).
+
+    ``start = (q0, qd0)``; ``stepping`` a :data:`Stepping`; ``plant_dp`` the plant's
+    :func:`~scara.dynamics.dynamic_array`; ``data`` the law's :data:`LawData`. Writes the :data:`Series`
+    ``out``. ``info`` (3,) int64 receives ``[code, k, law_code]``: :data:`OK` when all samples ran, otherwise
+    :data:`LAW_FAILED`, :data:`DIVERGED` (a state not finite or above ``limit``) or :data:`SINGULAR_INERTIA`,
+    at sample ``k``.
+
+    The law is called with small buffers owned by the loop (the measured state, the reference row, zeroed
+    ``signals`` and ``tau``), copied to and from the output rows: no array view is created per sample.
+    """
+    q0, qd0 = start
+    dt, substeps, limit = stepping.dt, stepping.substeps, stepping.limit
+    gains, model, state, work = data.gains, data.model, data.state, data.work
+    q_out, qd_out, qdd_out, tau_out, sig_out = out.q, out.qd, out.qdd, out.tau, out.signals
+    n = ref.shape[0]
+    n_ref = ref.shape[1]
+    n_sig = sig_out.shape[1]
+    pc = _plant_constants(plant_dp)
+    q = np.empty(4)
+    qd = np.empty(4)
+    qdd = np.empty(4)
+    spare = np.empty(4)
+    q_law = np.empty(4)
+    qd_law = np.empty(4)
+    r = np.empty(n_ref)
+    tau = np.empty(4)
+    sig = np.empty(n_sig)
+    for i in range(4):
+        q[i] = q0[i]
+        qd[i] = qd0[i]
+    h = dt / substeps
+    info[0] = OK
+    info[1] = n
+    info[2] = 0
+    for k in range(n):
+        for i in range(4):
+            q_out[k, i] = q[i]
+            qd_out[k, i] = qd[i]
+            q_law[i] = q[i]
+            qd_law[i] = qd[i]
+            tau[i] = 0.0
+        for i in range(n_ref):
+            r[i] = ref[k, i]
+        for i in range(n_sig):
+            sig[i] = 0.0
+        code = law(k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
+        for i in range(4):
+            tau_out[k, i] = tau[i]
+        for i in range(n_sig):
+            sig_out[k, i] = sig[i]
+        if code != OK:
+            info[0] = LAW_FAILED
+            info[1] = k
+            info[2] = code
+            return
+        ok = True
+        for i in range(4):
+            if not abs(tau[i]) < limit:
+                ok = False
+        if not ok:
+            info[0] = DIVERGED
+            info[1] = k
+            return
+        if k == n - 1:
+            a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
+                                       (tau[0], tau[1], tau[2], tau[3]), pc)
+            if c != OK:
+                info[0] = SINGULAR_INERTIA
+                info[1] = k
+            else:
+                for i in range(4):
+                    qdd_out[k, i] = a[i]
+            return
+        for s in range(substeps):
+            if _rk4_step(q, qd, (tau[0], tau[1], tau[2], tau[3]), pc, h, qdd if s == 0 else spare) != OK:
+                info[0] = SINGULAR_INERTIA
+                info[1] = k
+                return
+        for i in range(4):
+            qdd_out[k, i] = qdd[i]
+        for i in range(4):
+            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
+                ok = False
+        if not ok:
+            info[0] = DIVERGED
+            info[1] = k + 1
+            return
+
+
+def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float | None = None, *,
+             joint_reference=None, q0=None, qd0=None, substeps: int = 1, duration: float | None = None,
+             elbow: int = -1, limit: float = 1e6) -> SimulationResult:
+    """Run ``controller`` in closed loop on ``plant`` along ``traj``: the simulation engine of chapter 5.
+
+    Parameters
+    ----------
+    controller : a :class:`Controller` (the engine's interface).
+    traj : trajectory with ``t, x, xd, xdd`` (N,)/(N, 4) and ``dt``; may be None when ``joint_reference`` or
+        ``duration`` (open loop) is given.
+    plant : the true robot, default ``ScaraParams()`` (pass ``ScaraParams().with_payload(5.0)`` for
+        the control chapter).
+    dt : sampling period (s); default ``traj.dt`` or 1e-3. Must match ``traj.dt`` when both are given.
+    joint_reference : (N, 12) ``[q_d, qd_d, qdd_d]``, a ``(q, qd, qdd)`` tuple or an object with
+        ``q, qd, qdd`` (a ``clik2`` result). Default for joint controllers: ``clik2(traj)``.
+    q0, qd0 : initial state; default the reference's first sample (joint controllers) or the inverse
+        kinematics of ``x_d(0)`` with ``elbow`` (operational controllers); ``qd0`` default zero / reference.
+    substeps : RK4 steps per sampling period (the torque is held over all of them).
+    duration : length (s) of an open-loop run (``reference_kind == "none"``) without trajectory.
+    limit : a state or torque entry above this magnitude stops the run with :class:`~scara.UnstableError`.
+
+    Returns :class:`SimulationResult`. Raises :class:`~scara.ScaraError` for inconsistent inputs and
+    :class:`~scara.UnstableError` (with the time and cause) when the run diverges.
+    """
+    plant = _params(plant)
+    kind, dt, substeps = _check_run(controller, traj, dt, substeps)
+    ref, jref, x_d, xop, n = _references(kind, traj, joint_reference, duration, dt, plant)
+    q0, qd0 = _start_state(q0, qd0, jref, xop, traj, plant, elbow)
+    out, state, info, elapsed = _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit)
+    if info[0] != OK:
+        _raise_failure(controller, info, dt, limit)
+    q_out, qd_out, qdd_out, tau_out, x, e, sig_out = out
+    _pose_error(q_out, q_out if x_d is None else np.ascontiguousarray(x_d), plant.a1, plant.a2, plant.d0, x, e)
+    if x_d is None:
+        x_d = x.copy()
+        e[:] = 0.0
+    names = tuple(controller.signal_names)
+    return SimulationResult(t=np.arange(n) * dt, q=q_out, qd=qd_out, qdd=qdd_out, tau=tau_out, x=x, x_d=x_d, e=e,
+                            reference=ref, reference_kind=kind, q_d=None if jref is None else jref[:, :4],
+                            signals={nm: np.ascontiguousarray(sig_out[:, i]) for i, nm in enumerate(names)},
+                            controller=getattr(controller, "name", type(controller).__name__), plant=plant,
+                            dt=dt, substeps=substeps, elapsed=elapsed,
+                            extra={"final_state": state})
+
+
+def _check_run(controller, traj, dt, substeps):
+    """The checked ``(reference_kind, dt, substeps)`` of a run (see :func:`simulate`)."""
+    if not hasattr(controller, "law") or controller.law is None:
+        raise ScaraError(f"controller {controller!r} has no compiled law: see scara.simulate's interface")
+    if isinstance(substeps, bool) or int(substeps) != substeps or substeps < 1:
+        raise ScaraError(f"substeps = {substeps!r} must be a whole number >= 1")
+    kind = controller.reference_kind
+    if kind not in ("joint", "operational", "none"):
+        raise ScaraError(f"reference_kind = {kind!r}; expected 'joint', 'operational' or 'none'")
+    tdt = getattr(traj, "dt", None) if traj is not None else None
+    if dt is None:
+        dt = tdt if tdt is not None else 1e-3
+    dt = check_positive(dt, "dt")
+    if tdt is not None and abs(tdt - dt) > 1e-12 * dt:
+        raise ScaraError(f"dt = {dt} differs from the trajectory's sampling period {tdt}; resample the trajectory")
+    return kind, dt, int(substeps)
+
+
+def _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit):
+    """Run :func:`closed_loop_kernel` with the controller's arrays: ``(series, final state, info, elapsed s)``,
+    ``series = (q, qd, qdd, tau, x, e, signals)`` (``x``, ``e`` still to be filled)."""
+    n = len(ref)
+    gains = np.ascontiguousarray(controller.gains_array(), dtype=float)
+    model = np.ascontiguousarray(controller.model_array(), dtype=float)
+    state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
+    work = np.zeros((max(int(controller.work_rows), 0), 4))
+    # one allocation for the six (N, 4) series (each a C-contiguous slice): a block this large is backed by
+    # huge pages where the system allows it, which saves thousands of page faults per run
+    block = np.empty((6, n, 4))
+    q_out, qd_out, qdd_out, tau_out, x, e = block
+    sig_out = np.zeros((n, len(controller.signal_names)))
+    info = np.zeros(3, dtype=np.int64)
+    law = _compiled_law(controller.law)  # compile (or load) the law and the loop before the clock starts
+    loop = _compile.dispatcher_of(closed_loop_kernel)
+    t0 = time.perf_counter()
+    loop(law, (q0, qd0), ref, Stepping(float(dt), int(substeps), float(limit)), dynamic_array(plant),
+         LawData(gains, model, state, work), Series(q_out, qd_out, qdd_out, tau_out, sig_out), info)
+    elapsed = time.perf_counter() - t0
+    return (q_out, qd_out, qdd_out, tau_out, x, e, sig_out), state, info, elapsed
+
+
+def _raise_failure(controller, info, dt, limit):
+    """The :class:`~scara.UnstableError` of a run the loop stopped (``info = [code, k, law_code]``)."""
+    k = int(info[1])
+    code = int(info[2])
+    explain = getattr(controller, "explain", None)  # a controller may name the cause behind its codes
+    law_cause = f"the controller's law returned code {code}" + (f": {explain(code)}" if explain else "")
+    cause = {LAW_FAILED: law_cause,
+             DIVERGED: f"a joint state or torque exceeded {limit:g} or is not finite",
+             SINGULAR_INERTIA: "the plant's inertia matrix lost positive definiteness"}[int(info[0])]
+    raise UnstableError(f"the closed loop of {getattr(controller, 'name', controller)} diverged at "
+                        f"t = {k * dt:.4f} s (sample {k}): {cause}")
