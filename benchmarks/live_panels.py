@@ -52,6 +52,9 @@ def measure(chapters, repeats: int) -> dict:
             try:
                 lab.open(chapter)
                 data["run_all"][chapter] = lab.run_all()
+                for k in range(len(PANELS[chapter])):  # every figure drawn before its redraws are hooked
+                    lab.panels().nth(k).scroll_into_view_if_needed()
+                    lab.wait_drawn(lab.panels().nth(k))
                 lab.instrument()
                 for k, wanted in enumerate(PANELS[chapter]):
                     panel = lab.panels().nth(k)

@@ -47,9 +47,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._compile import kernel
-from .errors import ScaraError, ShapeError, UnreachableError, UnstableError, as_array
+from .errors import (ScaraError, ShapeError, UnreachableError, UnstableError, as_array, check_angles,
+                     check_finite_result, check_flag)
 from .gains import gain_vector
-from .kinematics import (_params, check_reachable, elbow_cosine, geometry, ikine, is_reachable, jacobian_kernel,
+from .kinematics import (_elbow_sign, _params, check_reachable, elbow_cosine, geometry, ikine, is_reachable, jacobian_kernel,
                          planar_det, planar_jacobian, planar_jacobian_at, planar_jacobian_dot, planar_position,
                          planar_trig, pose_kernel)
 from .params import ScaraParams
@@ -66,7 +67,13 @@ __all__ = [
     "transpose_stability",
     "second_order_gains",
     "dexterity",
+    "MAX_DAMPING_REACH",
 ]
+
+#: the largest damping ``lambda`` of (4.15), as a multiple of the reach ``a1 + a2``: ``damping <= 10 (a1 + a2)``
+#: (10 m for the arm of the course). The entries of ``J_A J_A^T`` are at most about ``(a1 + a2)^2``, so a larger
+#: ``lambda^2`` only freezes the arm (and ``lambda`` of 1e300 overflows ``lambda^2`` to inf)
+MAX_DAMPING_REACH = 10.0
 
 #: the first-order methods of :func:`clik`
 METHODS = ("inverse", "transpose", "pseudoinverse")
@@ -575,9 +582,9 @@ class ClikResult:
         ``max_orientation_error`` (rad), ``min_manipulability`` and ``mean_manipulability`` (m^2), ``run_time``
         (s). Raises :class:`ScaraError` if ``settle`` is negative or not shorter than the run.
         """
-        settle = float(settle)
+        given, settle = settle, _number(settle)
         if not (0.0 <= settle < self.t[-1] - self.t[0]):
-            raise ScaraError(f"settle = {settle} s must lie in [0, {self.t[-1] - self.t[0]:g}) s, the run's length")
+            raise ScaraError(f"settle = {given!r} s must be a number and lie in [0, {self.t[-1] - self.t[0]:g}) s, the run's length")
         after = self.t >= self.t[0] + settle - 1e-12
         ep = self.position_error[after]
         return {
@@ -656,12 +663,13 @@ def _trajectory(traj, need_acc: bool, p: ScaraParams):
 
 
 @kernel
-def _first_unclear_sample(x, r2_lo, r2_hi, d0, tol):
-    """First sample of ``x`` (N, >=3) whose reachability is not clear from squared radii, or -1."""
+def _first_unclear_sample(x, r2_lo, r2_hi, d0, d3_lo, d3_hi):
+    """First sample of ``x`` (N, >=3) whose reachability is not clear from squared radii and the stroke
+    ``d3_lo <= d0 - p_z <= d3_hi``, or -1."""
     for k in range(x.shape[0]):
         r2 = x[k, 0] * x[k, 0] + x[k, 1] * x[k, 1]
         d3 = d0 - x[k, 2]
-        if not (r2 >= r2_lo and r2 <= r2_hi and d3 >= -tol and d3 <= d0 + tol):
+        if not (r2 >= r2_lo and r2 <= r2_hi and d3 >= d3_lo and d3 <= d3_hi):
             return k
     return -1
 
@@ -674,7 +682,7 @@ def _clearly_reachable(x, p) -> bool:
     tol = 1e-12
     r2_lo = (p.r_min + 1e-9) ** 2 if p.r_min - tol > 0.0 else -1.0
     r2_hi = (p.r_max - 1e-9) ** 2
-    return _first_unclear_sample(x, r2_lo, r2_hi, p.d0, tol) < 0
+    return _first_unclear_sample(x, r2_lo, r2_hi, p.d0, p.d3_min - tol, p.d3_max + tol) < 0
 
 
 def _number(value):
@@ -685,10 +693,14 @@ def _number(value):
         return math.nan
 
 
-def _damping(damping, damping_threshold):
+def _damping(damping, damping_threshold, p):
     lam = _number(damping)
     if not math.isfinite(lam) or lam < 0:
         raise ScaraError(f"damping = {damping!r} must be a finite number >= 0 (m)")
+    lam_max = MAX_DAMPING_REACH * p.r_max
+    if lam > lam_max:
+        raise ScaraError(f"damping = {lam:g} m is above the largest damping accepted, {MAX_DAMPING_REACH:g} times the "
+                         f"reach a1 + a2: {lam_max:g} m (a larger lambda only freezes the arm)")
     if damping_threshold is None:
         return lam * lam, 0.0
     thr = _number(damping_threshold)
@@ -708,7 +720,7 @@ def _elbow(traj) -> int:
     """The trajectory's elbow if it carries one (``scara.trajectory`` does), else -1, the elbow of the
     reference scenario (chapter 3)."""
     elbow = getattr(traj, "elbow", -1)
-    return 1 if elbow == 1 else -1
+    return 1 if np.ndim(elbow) == 0 and not isinstance(elbow, (str, bytes)) and elbow == 1 else -1
 
 
 def start_configuration(traj, p: ScaraParams | None = None) -> np.ndarray:
@@ -723,15 +735,23 @@ def start_configuration(traj, p: ScaraParams | None = None) -> np.ndarray:
     p = _params(p)
     if not hasattr(traj, "x"):
         raise ScaraError(f"traj must have an attribute x (N, 4); {type(traj).__name__} has none")
-    x0 = as_array(np.asarray(traj.x, dtype=float)[0], "traj.x[0]", (4,))
+    x = as_array(traj.x, "traj.x", (4,), allow_batch=True)
+    if x.ndim != 2 or len(x) == 0:
+        raise ShapeError(f"traj.x must have shape (N, 4) with N >= 1, got {x.shape}")
+    x0 = x[0]
     return ikine(x0, p, elbow=_elbow(traj))
 
 
 def _start(traj, q0, p):
-    """The start configuration: ``q0`` if given, else :func:`start_configuration`."""
+    """The start configuration: ``q0`` if given (checked inside the quill's stroke ``p.d3_min <= d3 <= p.d3_max``
+    and within ``MAX_ANGLE`` rad), else :func:`start_configuration`."""
     if q0 is None:
         return start_configuration(traj, p)
-    return as_array(q0, "q0", (4,)).copy()
+    q = check_angles(as_array(q0, "q0", (4,)).copy(), "q0")
+    if not p.d3_min <= q[2] <= p.d3_max:
+        raise UnreachableError(f"q0[2] = d3 = {q[2]:.10g} m is outside the quill's stroke d3_min = {p.d3_min:g} m <= "
+                               f"d3 <= d3_max = {p.d3_max:g} m: a motion cannot start there")
+    return q
 
 
 def _check_initial_error(x0_ref, q0, p, kept, max_err):
@@ -770,14 +790,14 @@ def _fail(info, t, result, what):
 def _first_order_options(method, relaxed, k0, objective):
     """Check the method, the relaxed component, the null-space gain and the objective of :func:`clik`;
     return the kept-component mask (4,) and the null-space gain ``k0`` as a float."""
-    if method not in _METHOD_CODE:
+    if not isinstance(method, str) or method not in _METHOD_CODE:
         raise ScaraError(f"method = {method!r} is unknown; choose one of {', '.join(METHODS)}")
-    if objective not in _OBJECTIVE_CODE:
+    if not isinstance(objective, str) or objective not in _OBJECTIVE_CODE:
         raise ScaraError(f"objective = {objective!r} is unknown; choose one of {', '.join(OBJECTIVES)}")
     kept = np.ones(4)
     if method == "pseudoinverse":
         r = "x" if relaxed is None else relaxed
-        idx = COMPONENTS.index(r) if r in COMPONENTS else (int(r) if isinstance(r, (int, np.integer))
+        idx = COMPONENTS.index(r) if isinstance(r, str) and r in COMPONENTS else (int(r) if isinstance(r, (int, np.integer))
                                                            and not isinstance(r, bool) and 0 <= r < 4 else None)
         if idx is None:
             raise ScaraError(f"relaxed = {relaxed!r} is not an operational component; use one of "
@@ -895,10 +915,9 @@ def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int |
     t, x, _, _, dt = _trajectory(traj, False, p)
     K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     mu = np.empty(len(t))
-    elbow = _elbow(traj) if elbow is None else elbow
-    if isinstance(elbow, bool) or elbow not in (1, -1):
-        raise ScaraError(f"elbow = {elbow!r} is not allowed: use +1 (sin theta2 >= 0) or -1 (sin theta2 <= 0)")
+    elbow = _elbow(traj) if elbow is None else _elbow_sign(elbow)
     _transpose_rate_kernel(x, K, p.a1, p.a2, float(elbow), mu)
+    check_finite_result(mu, "largest eigenvalue mu of J_A J_A^T K", K=K)
     k = int(np.argmax(mu))
     limit = 2.0 / dt
     return TransposeStability(t, mu, float(mu[k]), float(t[k]), limit, float(limit / mu[k]))
@@ -920,11 +939,14 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
         Positive gains on ``e = x_d - x_e``; default the seed ``diag(400, 400, 400, 100)``.
     q0 : (4,), optional
         Start configuration; default :func:`start_configuration` (inverse kinematics of ``x_d(0)`` with ``theta2 < 0``).
-        Any other start leaves an initial error that the loop removes.
+        Any other start leaves an initial error that the loop removes. Its ``d3`` must lie in the quill's stroke
+        ``p.d3_min <= d3 <= p.d3_max`` (:class:`UnreachableError` otherwise) and its angles within ``MAX_ANGLE``
+        rad (:data:`scara.errors.MAX_ANGLE`).
     p : ScaraParams, optional
     damping : float, default 0
         Damped least squares (inverse and pseudo-inverse): ``J^* = J^T (J J^T + lambda^2 I)^-1`` with
-        ``lambda = damping``. Trades exactness for bounded joint velocities near a singularity.
+        ``lambda = damping`` (m), ``0 <= damping <= MAX_DAMPING_REACH (a1 + a2)`` (10 m for the arm of the
+        course). Trades exactness for bounded joint velocities near a singularity.
     damping_threshold : float, optional
         If given, the damping is applied only where the manipulability ``w`` falls below it, growing as
         ``lambda^2 = damping^2 (1 - (w / threshold)^2)``; elsewhere the exact inverse is used.
@@ -948,12 +970,13 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
     Raises
     ------
     ScaraError
-        Unknown method, relaxed component or objective; non-positive or non-finite gains; bad damping;
-        ``dt <= 0``; a start leaving an error above ``max_error``.
+        Unknown method, relaxed component or objective; non-positive or non-finite gains; a damping that is
+        negative, not finite or above ``MAX_DAMPING_REACH (a1 + a2)``; ``dt <= 0``; a start leaving an error above
+        ``max_error``; ``check_stability`` not a bool.
     ShapeError, NonFiniteError
         Malformed or non-finite trajectory arrays.
     UnreachableError
-        A reference sample outside the workspace (the message names the first).
+        A reference sample outside the workspace (the message names the first), or a ``q0`` outside the stroke.
     UnstableError
         Gains past the stability limit (message gives the limit), or a run that diverged (message gives the
         time and the cause; the run up to that point is attached as ``exc.result``).
@@ -972,8 +995,9 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
     p = _params(p)
     kept, k0v = _first_order_options(method, relaxed, k0, objective)
     K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
-    lam2, w_thr = _damping(damping, damping_threshold)
+    lam2, w_thr = _damping(damping, damping_threshold, p)
     max_err = _max_error(max_error)
+    check_stability = check_flag(check_stability, "check_stability")
     t, x_d, xd_d, _, dt, q_start = _reference_and_start(traj, False, q0, p, kept, max_err)
     law = _first_order_law(dt, method, K, kept, lam2, w_thr, k0v, objective, max_err)
     if check_stability:
@@ -995,7 +1019,10 @@ def second_order_gains(K=SEED_K):
     the first-order inverse CLIK with gain ``K``.
     """
     K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
-    return K**2, 2.0 * K
+    with np.errstate(over="ignore"):
+        K_P = K**2
+    check_finite_result(K_P, "K_P = K^2", K=K)
+    return K_P, 2.0 * K
 
 
 def clik2(traj, K_P=None, K_D=None, *, q0=None, qd0=None, p: ScaraParams | None = None, damping: float = 0.0,
@@ -1033,8 +1060,9 @@ def clik2(traj, K_P=None, K_D=None, *, q0=None, qd0=None, p: ScaraParams | None 
     KP0, KD0 = second_order_gains()
     K_P = gain_vector(K_P, "K_P", default=KP0, labels=COMPONENTS)
     K_D = gain_vector(K_D, "K_D", default=KD0, labels=COMPONENTS)
-    lam2, w_thr = _damping(damping, damping_threshold)
+    lam2, w_thr = _damping(damping, damping_threshold, p)
     max_err = _max_error(max_error)
+    check_stability = check_flag(check_stability, "check_stability")
     kept = np.ones(4)
     t, x_d, xd_d, xdd_d, dt, q_start = _reference_and_start(traj, True, q0, p, kept, max_err)
     qd_start = _start_velocity(q_start, xd_d[0], qd0, p)
@@ -1055,9 +1083,9 @@ def dexterity(q, objective: str = "sin2", p: ScaraParams | None = None):
     ``q`` (4,) or (N, 4); returns a float or (N,).
     """
     p = _params(p)
-    if objective not in _OBJECTIVE_CODE:
+    if not isinstance(objective, str) or objective not in _OBJECTIVE_CODE:
         raise ScaraError(f"objective = {objective!r} is unknown; choose one of {', '.join(OBJECTIVES)}")
-    q = as_array(q, "q", (4,), allow_batch=True)
+    q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     s2 = np.sin(q[..., 1])
     val = s2**2 if objective == "sin2" else p.a1 * p.a2 * np.abs(s2)
     return float(val) if np.ndim(val) == 0 else val

@@ -28,6 +28,10 @@ symmetric positive definite 4x4 solve in :func:`cholesky_solve4`.
 
 *Public functions* (``inertia``, ``coriolis``, ...) check their inputs, take an optional
 :class:`~scara.ScaraParams` (``None`` is the robot of the introduction, without payload) and return new arrays.
+They are formulas: ``d3`` may lie outside the quill's stroke (only a motion's start is held to it), the revolute
+angles must stay within ``MAX_ANGLE = 1e6`` rad (:data:`scara.errors.MAX_ANGLE`; beyond it ``sin`` and ``cos``
+lose all precision), and a result that overflows (speeds of 1e300 rad/s) raises
+:class:`~scara.errors.NonFiniteError` naming the input that was too large.
 """
 from __future__ import annotations
 
@@ -37,7 +41,8 @@ from collections import namedtuple
 import numpy as np
 
 from ._compile import ArrayLayout, kernel
-from .errors import ScaraError, ShapeError, UnstableError, as_array
+from .errors import (ScaraError, ShapeError, UnstableError, as_array, check_angles, check_finite_result,
+                     check_positive)
 from .kinematics import _params
 from .params import ScaraParams
 
@@ -424,6 +429,11 @@ def _vec(value, name):
     return np.ascontiguousarray(as_array(value, name, (4,)))
 
 
+def _config(value, name="q", allow_batch=False):
+    """A configuration: finite, of shape (4,) (or (N, 4)), revolute angles within ``MAX_ANGLE``."""
+    return np.ascontiguousarray(check_angles(as_array(value, name, (4,), allow_batch=allow_batch), name))
+
+
 def inertia(q, p: ScaraParams | None = None) -> np.ndarray:
     """Inertia matrix ``B(q)`` of the arm with rotors and payload (chapter 5), shape (4, 4).
 
@@ -434,8 +444,9 @@ def inertia(q, p: ScaraParams | None = None) -> np.ndarray:
     22.5
     """
     out = np.empty((4, 4))
-    inertia_kernel(_vec(q, "q"), dynamic_array(p), out)
-    return out
+    q = _config(q)
+    inertia_kernel(q, dynamic_array(p), out)
+    return check_finite_result(out, "B(q)", q=q)
 
 
 def coriolis(q, qd, p: ScaraParams | None = None) -> np.ndarray:
@@ -447,8 +458,9 @@ def coriolis(q, qd, p: ScaraParams | None = None) -> np.ndarray:
     0.0
     """
     out = np.empty((4, 4))
-    coriolis_kernel(_vec(q, "q"), _vec(qd, "qd"), dynamic_array(p), out)
-    return out
+    q, qd = _config(q), _vec(qd, "qd")
+    coriolis_kernel(q, qd, dynamic_array(p), out)
+    return check_finite_result(out, "C(q, qd)", qd=qd)
 
 
 def gravity(q, p: ScaraParams | None = None) -> np.ndarray:
@@ -458,8 +470,8 @@ def gravity(q, p: ScaraParams | None = None) -> np.ndarray:
     array([   0.  ,    0.  , -147.15,    0.  ])
     """
     out = np.empty(4)
-    gravity_kernel(_vec(q, "q"), dynamic_array(p), out)
-    return out
+    gravity_kernel(_config(q), dynamic_array(p), out)
+    return check_finite_result(out, "g(q)", m3=_params(p).m3, g0=_params(p).g0)
 
 
 def friction(p: ScaraParams | None = None) -> np.ndarray:
@@ -477,21 +489,20 @@ def inverse_dynamics(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
     ``q``, ``qd``, ``qdd`` have shape (4,) or all (N, 4) (a time series; the result then has shape (N, 4)).
     """
     dp = dynamic_array(p)
-    q = as_array(q, "q", (4,), allow_batch=True)
+    q = _config(q, allow_batch=True)
     qd = as_array(qd, "qd", (4,), allow_batch=True)
     qdd = as_array(qdd, "qdd", (4,), allow_batch=True)
     if not (q.shape == qd.shape == qdd.shape):
         raise ShapeError(f"q, qd and qdd must have the same shape, got {q.shape}, {qd.shape}, {qdd.shape}")
     work = dynamics_workspace()
+    q, qd, qdd = (np.ascontiguousarray(a) for a in (q, qd, qdd))
     if q.ndim == 1:
         out = np.empty(4)
-        inverse_dynamics_kernel(np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd),
-                                dp, work, out)
-        return out
-    q, qd, qdd = (np.ascontiguousarray(a) for a in (q, qd, qdd))
-    out = np.empty_like(q)
-    _inverse_dynamics_batch(q, qd, qdd, dp, work, out)
-    return out
+        inverse_dynamics_kernel(q, qd, qdd, dp, work, out)
+    else:
+        out = np.empty_like(q)
+        _inverse_dynamics_batch(q, qd, qdd, dp, work, out)
+    return check_finite_result(out, "tau = B qdd + C qd + F qd + g", q=q, qd=qd, qdd=qdd)
 
 
 @kernel
@@ -511,11 +522,11 @@ def forward_dynamics(q, qd, tau, p: ScaraParams | None = None) -> np.ndarray:
     True
     """
     out = np.empty(4)
-    code = forward_dynamics_kernel(_vec(q, "q"), _vec(qd, "qd"), _vec(tau, "tau"), dynamic_array(p),
-                                   dynamics_workspace(), out)
+    q, qd, tau = _config(q), _vec(qd, "qd"), _vec(tau, "tau")
+    code = forward_dynamics_kernel(q, qd, tau, dynamic_array(p), dynamics_workspace(), out)
     if code:
         raise UnstableError("B(q) is not positive definite for these parameters; check the inertias and masses")
-    return out
+    return check_finite_result(out, "qdd = B^-1 (tau - C qd - F qd - g)", q=q, qd=qd, tau=tau)
 
 
 def regressor(q, qd, qd_r, qdd_r, p: ScaraParams | None = None) -> np.ndarray:
@@ -530,8 +541,9 @@ def regressor(q, qd, qd_r, qdd_r, p: ScaraParams | None = None) -> np.ndarray:
     True
     """
     out = np.empty((4, N_PI))
-    regressor_kernel(_vec(q, "q"), _vec(qd, "qd"), _vec(qd_r, "qd_r"), _vec(qdd_r, "qdd_r"), dynamic_array(p), out)
-    return out
+    q, qd, qd_r, qdd_r = _config(q), _vec(qd, "qd"), _vec(qd_r, "qd_r"), _vec(qdd_r, "qdd_r")
+    regressor_kernel(q, qd, qd_r, qdd_r, dynamic_array(p), out)
+    return check_finite_result(out, "Y(q, qd, qd_r, qdd_r)", qd=qd, qd_r=qd_r, qdd_r=qdd_r)
 
 
 def dynamic_parameters(p: ScaraParams | None = None) -> np.ndarray:
@@ -575,6 +587,7 @@ def params_from_pi(pi, base: ScaraParams | None = None, rtol: float = 1e-9) -> S
     """
     base = _params(base)
     pi = as_array(pi, "pi", (N_PI,))
+    rtol = check_positive(rtol, "rtol")
     m3, m2l2, b11, b12, b22, b13, b33, b14, b44 = (float(v) for v in pi[:9])
     kr = np.asarray(base.k_r)
 
@@ -618,16 +631,17 @@ def kinetic_energy(q, qd, p: ScaraParams | None = None):
     ``q``, ``qd`` of shape (4,) give a float; (N, 4) series give shape (N,).
     """
     dp = dynamic_array(p)
-    q = as_array(q, "q", (4,), allow_batch=True)
-    qd = as_array(qd, "qd", (4,), allow_batch=True)
+    q = _config(q, allow_batch=True)
+    qd = np.ascontiguousarray(as_array(qd, "qd", (4,), allow_batch=True))
     if q.shape != qd.shape:
         raise ShapeError(f"q and qd must have the same shape, got {q.shape} and {qd.shape}")
     work = dynamics_workspace()
     if q.ndim == 1:
-        return float(kinetic_energy_kernel(np.ascontiguousarray(q), np.ascontiguousarray(qd), dp, work))
+        e = float(kinetic_energy_kernel(q, qd, dp, work))
+        return check_finite_result(e, "kinetic energy qd^T B qd / 2", qd=qd)
     out = np.empty(q.shape[0])
-    _kinetic_batch(np.ascontiguousarray(q), np.ascontiguousarray(qd), dp, work, out)
-    return out
+    _kinetic_batch(q, qd, dp, work, out)
+    return check_finite_result(out, "kinetic energy qd^T B qd / 2", qd=qd)
 
 
 @kernel
@@ -640,14 +654,18 @@ def potential_energy(q, p: ScaraParams | None = None):
     """Gravitational potential energy ``U(q)`` (J) of chapter 5, zero at the base-frame floor; shape (4,) gives
     a float, (N, 4) gives (N,)."""
     p = _params(p)
-    q = as_array(q, "q", (4,), allow_batch=True)
-    u = p.g0 * ((p.m_l1 + p.m_l2) * p.d0 + p.m3 * (p.d0 - q[..., 2]))
+    q = _config(q, allow_batch=True)
+    with np.errstate(over="ignore", invalid="ignore"):
+        u = p.g0 * ((p.m_l1 + p.m_l2) * p.d0 + p.m3 * (p.d0 - q[..., 2]))
+    check_finite_result(u, "potential energy U(q)", d3=q[..., 2])
     return float(u) if q.ndim == 1 else u
 
 
 def total_energy(q, qd, p: ScaraParams | None = None):
     """Total energy (J), kinetic plus potential: :func:`kinetic_energy` plus :func:`potential_energy`."""
-    return kinetic_energy(q, qd, p) + potential_energy(q, p)
+    with np.errstate(over="ignore", invalid="ignore"):
+        e = kinetic_energy(q, qd, p) + potential_energy(q, p)
+    return check_finite_result(e, "total energy T + U", q=q, qd=qd)
 
 
 #: the terms of :func:`torque_breakdown`, in display order

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import ScaraError, ShapeError
+from .errors import ScaraError, ShapeError, _numeric_objects
 
 __all__ = ["gain_vector", "RULES"]
 
@@ -45,8 +45,11 @@ def gain_vector(value, name: str, n: int = 4, *, default=None, rule: str = "posi
     if value is None or isinstance(value, (str, bytes, bool, np.bool_)):
         raise ShapeError(f"{what}, got {value!r}")
     try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError) as exc:
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "iuf" and not _numeric_objects(raw):  # booleans, strings: not gains
+            raise TypeError("not numbers")
+        arr = np.array(raw, dtype=float)
+    except (TypeError, ValueError, OverflowError) as exc:
         raise ShapeError(f"{what}, got {value!r}") from exc
     if arr.ndim == 0:
         arr = np.full(n, float(arr))

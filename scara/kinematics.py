@@ -7,6 +7,15 @@ scalars (``planar_trig``, ``planar_position``, ``planar_jacobian_at``, ``planar_
 (``*_kernel``) write into arrays passed by the caller; the later chapters' compiled loops (CLIK, simulation)
 call the building blocks or these kernels directly, with the arm's lengths as a :class:`Geometry` record or
 as numbers. The public functions check their inputs and wrap the kernels.
+
+Configurations and the stroke: the functions that take a configuration ``q`` (:func:`pose`, :func:`fkine`,
+:func:`jacobian`, ...) are formulas and accept any finite ``d3``, also outside the quill's stroke
+``p.d3_min <= d3 <= p.d3_max`` (:class:`~scara.ScaraParams`); their revolute angles must stay within
+``MAX_ANGLE = 1e6`` rad (:data:`scara.errors.MAX_ANGLE`), beyond which ``sin`` and ``cos`` lose all precision, and
+a result that overflows (a ``qd`` of 1e300 rad/s in :func:`jacobian_dot`) raises
+:class:`~scara.errors.NonFiniteError` naming the input. The inverse kinematics and the reachability tests
+(:func:`ikine`, :func:`is_reachable`, :func:`check_reachable`) honour the stroke: a point needing
+``d3 = d0 - p_z`` outside ``[d3_min, d3_max]`` is unreachable.
 """
 from __future__ import annotations
 
@@ -16,7 +25,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._compile import kernel
-from .errors import ScaraError, UnreachableError, as_array
+from .errors import ScaraError, UnreachableError, as_array, check_angles, check_finite_result, _numbers
 from .params import ScaraParams
 
 __all__ = [
@@ -55,6 +64,15 @@ def _params(p):
     if not isinstance(p, ScaraParams):
         raise ScaraError(f"p must be a ScaraParams object or None, got {type(p).__name__}")
     return p
+
+
+def _elbow_sign(elbow) -> int:
+    """``elbow`` checked to be +1 or -1 (an int or a float equal to it; not a bool, a string or an array)."""
+    ok = (not isinstance(elbow, (bool, np.bool_)) and isinstance(elbow, (int, float, np.integer, np.floating))
+          and elbow in (1, -1))
+    if not ok:
+        raise ScaraError(f"elbow = {elbow!r} is not allowed: use +1 (sin theta2 >= 0) or -1 (sin theta2 <= 0)")
+    return int(elbow)
 
 
 def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
@@ -179,15 +197,16 @@ IK_OUTSIDE_STROKE = 2
 
 
 @kernel
-def ikine_kernel(x, a1, a2, d0, elbow, out):
+def ikine_kernel(x, a1, a2, d0, d3_min, d3_max, elbow, out):
     """Closed-form inverse kinematics (1.8)-(1.10) written into ``out`` (4,).
 
     With ``y' = -p_y`` the horizontal problem is the planar two-link arm:
     ``c2 = (p_x^2 + y'^2 - a1^2 - a2^2) / (2 a1 a2)`` (:func:`elbow_cosine`), ``s2 = elbow sqrt(1 - c2^2)``,
     ``theta2 = atan2(s2, c2)``, ``theta1 = atan2(y', p_x) - atan2(a2 s2, a1 + a2 c2)``,
     ``d3 = d0 - p_z``, ``theta4 = phi - theta1 - theta2``.
-    Returns :data:`IK_OK`, :data:`IK_OUTSIDE_ANNULUS` or :data:`IK_OUTSIDE_STROKE` (``d3`` outside
-    ``[0, d0]``). The caller checks the code; ``out`` is left unchanged on failure.
+    Returns :data:`IK_OK`, :data:`IK_OUTSIDE_ANNULUS` or :data:`IK_OUTSIDE_STROKE` (``d3`` outside the stroke
+    ``[d3_min, d3_max]`` of :class:`~scara.ScaraParams`). The caller checks the code; ``out`` is left unchanged
+    on failure.
     """
     px = x[0]
     py = -x[1]
@@ -196,7 +215,7 @@ def ikine_kernel(x, a1, a2, d0, elbow, out):
     if c2 > 1.0 + tol or c2 < -1.0 - tol:
         return IK_OUTSIDE_ANNULUS
     d3 = d0 - x[2]
-    if d3 < -tol or d3 > d0 + tol:
+    if d3 < d3_min - tol or d3 > d3_max + tol:
         return IK_OUTSIDE_STROKE
     if c2 > 1.0:
         c2 = 1.0
@@ -232,7 +251,7 @@ def dh_table(q=None, p: ScaraParams | None = None) -> np.ndarray:
     With ``q`` the joint variables are filled in; without it they are zero.
     """
     p = _params(p)
-    q = np.zeros(4) if q is None else as_array(q, "q", (4,))
+    q = np.zeros(4) if q is None else check_angles(as_array(q, "q", (4,)))
     return np.array([
         [p.a1, 0.0, 0.0, q[0]],
         [p.a2, 0.0, 0.0, q[1]],
@@ -243,6 +262,8 @@ def dh_table(q=None, p: ScaraParams | None = None) -> np.ndarray:
 
 def dh_matrix(a: float, alpha: float, d: float, theta: float) -> np.ndarray:
     """Homogeneous transform ``A_i^{i-1}`` of one DH row (Siciliano et al., eq. 2.52), shape (4, 4)."""
+    a, alpha, d, theta = (float(v) for v in as_array([a, alpha, d, theta], "DH row (a, alpha, d, theta)", (4,)))
+    check_angles(np.array([alpha, theta, 0.0, 0.0]), "DH angles (alpha, theta)", columns=(0, 1))
     ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
     return np.array([
         [ct, -st * ca, st * sa, a * ct],
@@ -258,7 +279,7 @@ def link_frames(q, p: ScaraParams | None = None) -> np.ndarray:
     Computed as the running product of the DH matrices of :func:`dh_table`, shape (6, 4, 4).
     """
     p = _params(p)
-    q = as_array(q, "q", (4,))
+    q = check_angles(as_array(q, "q", (4,)))
     frames = [BASE_TRANSFORM(p)]
     for row in dh_table(q, p):
         frames.append(frames[-1] @ dh_matrix(*row))
@@ -275,14 +296,14 @@ def pose(q, p: ScaraParams | None = None) -> np.ndarray:
     array([ 1. , -0. ,  0.5,  0. ])
     """
     p = _params(p)
-    q = as_array(q, "q", (4,), allow_batch=True)
+    q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     if q.ndim == 1:
         out = np.empty(4)
         pose_kernel(q, p.a1, p.a2, p.d0, out)
-        return out
-    out = np.empty_like(q)
-    pose_batch_kernel(q, p.a1, p.a2, p.d0, out)
-    return out
+    else:
+        out = np.empty_like(q)
+        pose_batch_kernel(q, p.a1, p.a2, p.d0, out)
+    return check_finite_result(out, "pose x_e", q=q)
 
 
 def fkine(q, p: ScaraParams | None = None) -> np.ndarray:
@@ -302,7 +323,7 @@ def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
     ``det J_A = a1 a2 sin(theta2)``: singular with the arm stretched or folded.
     """
     p = _params(p)
-    q = as_array(q, "q", (4,))
+    q = check_angles(as_array(q, "q", (4,)))
     out = np.empty((4, 4))
     jacobian_kernel(q, p.a1, p.a2, out)
     return out
@@ -311,11 +332,11 @@ def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
 def jacobian_dot(q, qd, p: ScaraParams | None = None) -> np.ndarray:
     """``Jdot_A(q, qd)``, the time derivative of :func:`jacobian` along a motion, shape (4, 4)."""
     p = _params(p)
-    q = as_array(q, "q", (4,))
+    q = check_angles(as_array(q, "q", (4,)))
     qd = as_array(qd, "qd", (4,))
     out = np.empty((4, 4))
     jacobian_dot_kernel(q, qd, p.a1, p.a2, out)
-    return out
+    return check_finite_result(out, "Jdot_A(q, qd)", qd=qd)
 
 
 def _unreachable_message(x, code, p, label="point"):
@@ -326,15 +347,16 @@ def _unreachable_message(x, code, p, label="point"):
                 f"a1 + a2 = {p.r_max:g} m")
     d3 = p.d0 - x[2]
     return (f"{label} x = {np.array2string(np.asarray(x), precision=4)} is unreachable: p_z = {x[2]:.10g} m needs "
-            f"d3 = d0 - p_z = {d3:.10g} m, outside the stroke 0 <= d3 <= d0 = {p.d0:g} m")
+            f"d3 = d0 - p_z = {d3:.10g} m, outside the stroke d3_min = {p.d3_min:g} m <= d3 <= "
+            f"d3_max = {p.d3_max:g} m")
 
 
 @kernel
-def ikine_batch_kernel(xs, a1, a2, d0, elbow, out):
+def ikine_batch_kernel(xs, a1, a2, d0, d3_min, d3_max, elbow, out):
     """:func:`ikine_kernel` for every row of ``xs`` (N, 4), written into ``out`` (N, 4), in one compiled loop.
     Returns -1 when every row is reachable, else the index of the first row that is not."""
     for k in range(xs.shape[0]):
-        if ikine_kernel(xs[k], a1, a2, d0, elbow, out[k]) != IK_OK:
+        if ikine_kernel(xs[k], a1, a2, d0, d3_min, d3_max, elbow, out[k]) != IK_OK:
             return k
     return -1
 
@@ -354,45 +376,52 @@ def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
     Raises
     ------
     UnreachableError
-        The point is outside the annulus ``|a1 - a2| <= r <= a1 + a2`` or needs ``d3`` outside ``[0, d0]``
-        (for a batch, the message names the first such sample).
+        The point is outside the annulus ``|a1 - a2| <= r <= a1 + a2`` or needs ``d3 = d0 - p_z`` outside the
+        stroke ``[p.d3_min, p.d3_max]`` (for a batch, the message names the first such sample).
     ScaraError
-        ``elbow`` is not +1 or -1.
+        ``elbow`` is not +1 or -1; ``|phi|`` beyond ``MAX_ANGLE = 1e6`` rad.
 
     >>> ikine(pose([0.3, -1.2, 0.4, 0.1]), elbow=-1).round(6)
     array([ 0.3, -1.2,  0.4,  0.1])
     """
     p = _params(p)
-    if isinstance(elbow, bool) or elbow not in (1, -1):
-        raise ScaraError(f"elbow = {elbow!r} is not allowed: use +1 (sin theta2 >= 0) or -1 (sin theta2 <= 0)")
+    elbow = _elbow_sign(elbow)
     x = as_array(x, "x", (4,), allow_batch=True)
     batch = x.ndim == 2
     xs = x if batch else x[None, :]
     out = np.empty_like(xs)
-    k = ikine_batch_kernel(xs, p.a1, p.a2, p.d0, float(elbow), out)
+    check_angles(x, "x", columns=(3,))
+    k = ikine_batch_kernel(xs, p.a1, p.a2, p.d0, p.d3_min, p.d3_max, float(elbow), out)
     if k >= 0:
-        code = ikine_kernel(xs[k], p.a1, p.a2, p.d0, float(elbow), np.empty(4))
+        code = ikine_kernel(xs[k], p.a1, p.a2, p.d0, p.d3_min, p.d3_max, float(elbow), np.empty(4))
         raise UnreachableError(_unreachable_message(xs[k], code, p, f"sample {k}: point" if batch else "point"))
+    check_finite_result(out, "inverse kinematics q", x=x)
     return out if batch else out[0]
 
 
 def is_reachable(points, p: ScaraParams | None = None) -> np.ndarray:
-    """Boolean mask: which points (shape (3,)/(4,) or (N, 3)/(N, 4), positions first) the arm can reach."""
+    """Boolean mask: which points (shape (3,)/(4,) or (N, 3)/(N, 4), positions first) the arm can reach: inside
+    the annulus ``|a1 - a2| <= r <= a1 + a2`` with ``d3 = d0 - p_z`` in the stroke ``[p.d3_min, p.d3_max]``.
+    A point holding NaN or inf is not reachable (False)."""
     p = _params(p)
-    pts = np.asarray(points, dtype=float)
+    pts = _numbers(points, "points must be an array of numbers")
     if pts.ndim not in (1, 2) or pts.shape[-1] not in (3, 4):
         raise ScaraError(f"points must have shape (3,), (4,), (N, 3) or (N, 4), got {pts.shape}")
     r = np.hypot(pts[..., 0], pts[..., 1])
     d3 = p.d0 - pts[..., 2]
     tol = 1e-12
-    return ((r >= p.r_min - tol) & (r <= p.r_max + tol) & (d3 >= -tol) & (d3 <= p.d0 + tol)
+    return ((r >= p.r_min - tol) & (r <= p.r_max + tol) & (d3 >= p.d3_min - tol) & (d3 <= p.d3_max + tol)
             & np.all(np.isfinite(pts), axis=-1))
 
 
 def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -> None:
     """Raise :class:`UnreachableError` naming the point and the limit it breaks if the arm cannot reach it."""
     p = _params(p)
-    x = as_array(point, label, (3,)) if np.shape(point) == (3,) else as_array(point, label, (4,))
+    try:
+        three = np.shape(point) == (3,)
+    except ValueError:  # a ragged sequence: as_array names it
+        three = False
+    x = as_array(point, label, (3,)) if three else as_array(point, label, (4,))
     if is_reachable(x, p):
         return
     r = math.hypot(x[0], x[1])

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._compile import kernel
-from .errors import ScaraError, as_array
+from .errors import ScaraError, as_array, check_angles, check_count, check_index
 from .kinematics import _params, elbow_cosine, jacobian, pose
 from .params import ScaraParams
 
@@ -19,7 +19,15 @@ __all__ = [
     "force_ellipsoid",
     "workspace_map",
     "singular_radii",
+    "MAX_GRID",
+    "MAX_OUTLINE",
 ]
+
+#: largest number of grid points per side of :func:`workspace_map` (a 2001 x 2001 grid, about 4 million points;
+#: the book's finest map has 801 per side)
+MAX_GRID = 2001
+#: largest number of points of :meth:`Ellipsoid.outline`
+MAX_OUTLINE = 100_000
 
 
 @kernel
@@ -37,7 +45,7 @@ def manipulability(q, p: ScaraParams | None = None):
     0.25
     """
     p = _params(p)
-    q = as_array(q, "q", (4,), allow_batch=True)
+    q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     if q.ndim == 1:
         return float(manipulability_kernel(q, p.a1, p.a2))
     return p.a1 * p.a2 * np.abs(np.sin(q[:, 1]))
@@ -64,9 +72,11 @@ class Ellipsoid:
         ``plane`` names two base-frame components (0 = x, 1 = y, 2 = z), both among ``rows``. For the SCARA's
         position part the horizontal and vertical directions decouple, so the x-y ellipse is the section of
         the ellipsoid through its centre. Raises :class:`ScaraError` when the plane is not spanned by two
-        principal axes or an axis is unbounded (the force ellipse at a singular configuration).
+        principal axes or an axis is unbounded (the force ellipse at a singular configuration), and for a plane
+        that is not two integer indices or an ``n`` that is not a whole number in ``2 .. MAX_OUTLINE``.
         """
-        plane = tuple(int(c) for c in plane)
+        n = check_count(n, "n", 2, MAX_OUTLINE, "outline points")
+        plane = _indices(plane, "plane", 3)
         if len(plane) != 2 or any(c not in self.rows for c in plane) or plane[0] == plane[1]:
             raise ScaraError(f"plane = {plane} must name two distinct components among rows = {self.rows}")
         local = [self.rows.index(c) for c in plane]  # positions of the plane's components in the axes
@@ -81,11 +91,26 @@ class Ellipsoid:
         return pts + self.centre[list(plane)]
 
 
+def _indices(values, name, size) -> tuple:
+    """``values`` as a tuple of integer indices ``0..size-1`` (a float such as 0.7, a bool or a string is refused:
+    truncating it would silently pick another component)."""
+    if isinstance(values, (str, bytes)) or np.ndim(values) != 1:
+        raise ScaraError(f"{name} = {values!r} must be a sequence of integer indices among 0..{size - 1}")
+    out = []
+    for v in values:
+        try:
+            out.append(check_index(v, "index", size))
+        except ScaraError as exc:
+            raise ScaraError(f"{name} = {tuple(values)!r} must hold integer indices among 0..{size - 1} (0 = x, "
+                             f"1 = y, 2 = z): its entry {v!r} is not one") from exc
+    return tuple(out)
+
+
 def _position_svd(q, p, rows):
-    rows = tuple(int(r) for r in rows)
+    rows = _indices(rows, "rows", 3)
     if not rows or any(r not in (0, 1, 2) for r in rows) or len(set(rows)) != len(rows):
         raise ScaraError(f"rows = {rows} must be distinct operational position components among 0 (x), 1 (y), 2 (z)")
-    J = jacobian(q, p)[list(rows), :]
+    J = jacobian(q, p)[list(rows), :]  # jacobian checks q
     U, s, _ = np.linalg.svd(J, full_matrices=False)
     return U, s, rows
 
@@ -126,11 +151,12 @@ def workspace_map(p: ScaraParams | None = None, n: int = 201):
     ``w`` depends on the distance ``r`` to the joint-1 axis only: ``cos theta2 = (r^2 - a1^2 - a2^2) / (2 a1 a2)``
     (1.9) and ``w = a1 a2 sin|theta2|`` (2.7), the same for both elbows. Returns ``(xs, ys, W)`` with ``W[i, j]`` at
     ``(xs[j], ys[i])`` and NaN where the point is outside the annulus (no configuration reaches it).
+
+    ``n`` is a whole number of grid points per side, ``3 <= n <= MAX_GRID = 2001`` (checked before any work).
     """
     p = _params(p)
-    if int(n) < 3:
-        raise ScaraError(f"n = {n} grid points per side is too few (need >= 3)")
-    xs = np.linspace(-p.r_max, p.r_max, int(n))
+    n = check_count(n, "n", 3, MAX_GRID, "grid points per side")
+    xs = np.linspace(-p.r_max, p.r_max, n)
     X, Y = np.meshgrid(xs, xs)
     c2 = elbow_cosine(X, Y, p.a1, p.a2)
     inside = np.abs(c2) <= 1.0 + 1e-12  # points on the singular circles count as reachable

@@ -1,4 +1,4 @@
-"""The robot's parameters (SPEC section 1) in one frozen object."""
+"""The robot's parameters (the table of the book's introduction, book/intro.md) in one frozen object."""
 from __future__ import annotations
 
 import dataclasses
@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import ScaraError
+from .errors import ScaraError, _numbers
 
 __all__ = ["ScaraParams"]
 
@@ -17,12 +17,14 @@ def _vec(*values):
 
 @dataclass(frozen=True)
 class ScaraParams:
-    """Geometry, masses, inertias, motors and payload of the 4-axis SCARA arm (SPEC section 1).
+    """Geometry, masses, inertias, motors and payload of the 4-axis SCARA arm (the table of book/intro.md).
 
     ``ScaraParams()`` is the robot of the course without payload. The object is frozen: a heavier payload
     or a controller's wrong estimate is a copy, made with :meth:`with_payload` or :meth:`replace`.
 
     Units: metres, kilograms, kg m^2, N m s/rad; ``k_r[2]`` is in rad/m (rotor radians per metre of ``d3``).
+    The joint limits are the quill's stroke ``d3_min <= d3 <= d3_max`` (:attr:`q_min`, :attr:`q_max`); the
+    revolute joints have none.
 
     Examples
     --------
@@ -47,18 +49,22 @@ class ScaraParams:
     F_m: tuple = _vec(5e-5, 5e-5, 0.01, 0.005)
     m_L: float = 0.0
     g0: float = 9.81
+    d3_min: float = 0.0
+    d3_max: float = 1.0
 
     def __post_init__(self):
         for f in dataclasses.fields(self):
             v = getattr(self, f.name)
-            if isinstance(v, (tuple, list, np.ndarray)):
-                arr = np.asarray(v, dtype=float)
+            if f.default_factory is not dataclasses.MISSING:  # a per-joint field: k_r, I_m, F_m
+                arr = _numbers(v, f"{f.name} must be 4 numbers (one per joint)")
                 if arr.shape != (4,):
                     raise ScaraError(f"{f.name} must have 4 entries (one per joint), got shape {arr.shape}")
                 if not np.all(np.isfinite(arr)) or np.any(arr < 0):
                     raise ScaraError(f"{f.name} = {arr.tolist()} must be finite and >= 0")
                 object.__setattr__(self, f.name, tuple(float(x) for x in arr))
             else:
+                if isinstance(v, (bool, np.bool_, str, bytes, tuple, list, dict, np.ndarray)):
+                    raise ScaraError(f"{f.name} must be a number, got {v!r}")
                 try:
                     x = float(v)
                 except (TypeError, ValueError) as exc:
@@ -69,6 +75,9 @@ class ScaraParams:
         for name in ("a1", "a2", "d0"):
             if getattr(self, name) <= 0:
                 raise ScaraError(f"{name} = {getattr(self, name)} must be > 0 (a length of the arm)")
+        if not self.d3_min < self.d3_max:
+            raise ScaraError(f"the quill's stroke d3_min = {self.d3_min:g} m .. d3_max = {self.d3_max:g} m must be a "
+                             f"range: d3_min < d3_max")
 
     # -- copies -------------------------------------------------------------------------------------
     def replace(self, **changes) -> "ScaraParams":
@@ -90,7 +99,7 @@ class ScaraParams:
 
     @property
     def F(self) -> np.ndarray:
-        """Viscous friction at the joints, ``diag(k_ri^2 F_mi)`` (SPEC section 3), shape (4,)."""
+        """Viscous friction at the joints, ``diag(k_ri^2 F_mi)`` (chapter 5), shape (4,)."""
         return np.asarray(self.k_r) ** 2 * np.asarray(self.F_m)
 
     @property
@@ -102,6 +111,17 @@ class ScaraParams:
     def r_max(self) -> float:
         """Outer radius of the reachable annulus, ``a1 + a2`` (m)."""
         return self.a1 + self.a2
+
+    @property
+    def q_min(self) -> np.ndarray:
+        """Lower joint limits (rad, rad, m, rad): the quill's stroke ``d3_min``; the revolute joints turn freely
+        (``-inf``)."""
+        return np.array([-np.inf, -np.inf, self.d3_min, -np.inf])
+
+    @property
+    def q_max(self) -> np.ndarray:
+        """Upper joint limits (rad, rad, m, rad): the quill's stroke ``d3_max``; the revolute joints turn freely."""
+        return np.array([np.inf, np.inf, self.d3_max, np.inf])
 
     def kinematic_array(self) -> np.ndarray:
         """``[a1, a2, d0]`` as a float array, the form compiled kinematic kernels take."""
@@ -121,5 +141,6 @@ class ScaraParams:
             ("k_r", "-, -, rad/m, -", "gear ratios"), ("I_m", "kg m^2", "rotor inertias"),
             ("F_m", "N m s/rad", "viscous friction at the rotors"), ("m_L", "kg", "payload"),
             ("g0", "m/s^2", "gravity"),
+            ("d3_min", "m", "top of the quill's stroke"), ("d3_max", "m", "bottom of the quill's stroke"),
         ]
         return [(s, f"{fmt(getattr(self, s))} {u}", m) for s, u, m in rows]

@@ -493,3 +493,41 @@ def test_fast_transpose_check_agrees_with_eigenvalues(ref, scale):
     assert (first >= 0) == (not st_.stable)
     if first >= 0:
         assert st_.mu[first] >= 2 / DT and np.all(st_.mu[:first] < 2 / DT)
+
+
+def test_q0_outside_the_stroke_is_refused(ref):
+    from scara import ScaraParams
+    q = ikine(ref.x[0], elbow=-1)
+    with pytest.raises(UnreachableError, match=r"q0\[2\] = d3 = 1\.5 m is outside the quill's stroke d3_min = 0 m <= "
+                                               r"d3 <= d3_max = 1 m"):
+        clik(ref, q0=[q[0], q[1], 1.5, q[3]])
+    short = ScaraParams(d3_min=0.0, d3_max=0.45)  # the reference's p_z = 0.5 needs d3 = 0.5 m
+    with pytest.raises(UnreachableError, match=r"outside the stroke d3_min = 0 m <= d3 <= d3_max = 0\.45 m"):
+        clik(ref, p=short)
+
+
+def test_damping_above_its_bound_is_refused(ref):
+    from scara.clik import MAX_DAMPING_REACH
+    with pytest.raises(ScaraError, match=rf"damping = 1e\+300 m is above the largest damping accepted, "
+                                         rf"{MAX_DAMPING_REACH:g} times the reach a1 \+ a2: 10 m"):
+        clik(ref, damping=1e300)
+    with pytest.raises(ScaraError, match=r"damping = 11 m is above the largest damping accepted"):
+        clik2(ref, damping=11.0)
+
+
+def test_wrong_types_of_clik_options_raise_scara_errors(ref):
+    with pytest.raises(ScaraError, match=r"method = \['inverse'\] is unknown"):
+        clik(ref, method=["inverse"])
+    with pytest.raises(ScaraError, match=r"check_stability = 'no' must be True or False"):
+        clik(ref, check_stability="no")
+    with pytest.raises(ScaraError, match=r"elbow = 'up' is not allowed"):
+        transpose_stability(ref, elbow="up")
+    with pytest.raises(ShapeError, match=r"traj.x must have shape \(N, 4\) with N >= 1, got \(0, 4\)"):
+        start_configuration(SimpleNamespace(x=np.empty((0, 4))))
+
+
+def test_overflowing_gains_name_K(ref):
+    with pytest.raises(NonFiniteError, match=r"K = \[1\.e\+300 .* gives a non-finite K_P = K\^2: K is too large"):
+        second_order_gains([1e300, 1.0, 1.0, 1.0])
+    with pytest.raises(NonFiniteError, match=r"gives a non-finite largest eigenvalue mu of J_A J_A\^T K: K is too large"):
+        transpose_stability(ref, K=1e300)

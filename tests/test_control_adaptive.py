@@ -4,7 +4,7 @@ and an adaptation that is too fast."""
 import numpy as np
 import pytest
 
-from scara import AdaptiveController, UnstableError, simulate
+from scara import AdaptiveController, ScaraError, UnstableError, simulate
 from scara.control import adaptation_gains
 from scara.dynamics import PI_NAMES
 
@@ -56,3 +56,12 @@ def test_adaptation_too_fast_diverges(traj, jref):
     c = AdaptiveController(K_pi=1e-7)
     with pytest.raises(UnstableError, match=r"diverged at t = \d+\.\d+ s.*(max_error|tau_max)"):
         c.run(traj, P5, joint_reference=jref)
+
+
+def test_adaptation_weights_must_be_numbers_with_a_finite_inverse():
+    for bad in ("3", True, [1.0, 2.0]):
+        with pytest.raises(ScaraError, match=r"K_pi must be a number"):
+            adaptation_gains(bad)
+    with pytest.raises(ScaraError, match=r"K_pi\[0\] = .* \(m3\) is too small: its inverse, the adaptation rate, is not "
+                                         r"finite"):
+        adaptation_gains(1e-320)

@@ -289,3 +289,38 @@ def test_live_panel_re_simulates_and_reports_errors(traj):
     assert isinstance(c, OperationalSpaceController) and not c.integral
     c = make_controller("adaptive (Slotine-Li)", 900, 60, 30, 20, 0.05, 2.0, 0.01, 8000)
     assert np.allclose(c.K_D, [1200, 600, 2000, 120]) and c.K_pi_inv[0] == 100.0
+
+
+def test_counts_and_options_of_the_measures_are_checked_before_any_work(runs):
+    c, r = runs["operational"]
+    with pytest.raises(ScaraError, match=r"repeats = 1001 exceeds its limit 1000"):
+        law_cost(c, r, repeats=1001)
+    for bad in (1.5, "3", True, 0):
+        with pytest.raises(ScaraError, match=r"repeats = .*must be"):
+            law_cost(c, r, repeats=bad)
+    with pytest.raises(ScaraError, match=r"repeats = 5000 exceeds its limit 1000"):
+        control_summary(r, c, repeats=5000)
+    with pytest.raises(ScaraError, match=rf"n = {len(r.t) + 1} exceeds its limit {len(r.t)}"):
+        replay_law(c, r, n=len(r.t) + 1)
+    for name in ("settle", "rest"):
+        for bad in (math.nan, math.inf, -1.0):
+            with pytest.raises(ScaraError, match=name):
+                control_summary(r, **{name: bad})
+
+
+def test_measures_refuse_a_result_or_controller_they_cannot_read(runs):
+    from types import SimpleNamespace
+
+    c, r = runs["operational"]
+    bad_tau = r.tau.copy()
+    bad_tau[5, 1] = np.nan
+    with pytest.raises(ScaraError, match=r"result\.tau\[\(5, 1\)\] = nan is not finite"):
+        chattering(SimpleNamespace(tau=bad_tau))
+    with pytest.raises(ScaraError, match=r"result\.tau\[\(5, 1\)\] = nan is not finite"):
+        control_summary(SimpleNamespace(t=r.t, e=r.e, tau=bad_tau))
+    with pytest.raises(ScaraError, match=r"has no attribute 'reference'"):
+        replay_law(c, SimpleNamespace(t=r.t, q=r.q, qd=r.qd, dt=r.dt))
+    with pytest.raises(ScaraError, match=r"controller = 'abc' is not a controller of scara.simulate's interface"):
+        law_cost("abc", r, repeats=1)
+    with pytest.raises(ScaraError, match=r"one length"):
+        replay_law(c, SimpleNamespace(t=r.t, q=r.q[:10], qd=r.qd, reference=r.reference, dt=r.dt))

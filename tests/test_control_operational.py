@@ -4,7 +4,7 @@ and the singular Jacobian."""
 import numpy as np
 import pytest
 
-from scara import OperationalSpaceController, UnstableError, inertia, pose
+from scara import OperationalSpaceController, ScaraError, UnstableError, inertia, pose
 from scara.control import replay_law
 
 from _control_shared import G0, P0, P5, _pos_err, _rest
@@ -62,3 +62,17 @@ def test_operational_law_refuses_a_singular_jacobian():
     res.reference = np.concatenate([pose(res.q[0]), np.zeros(8)])[None, :]
     tau, _, _ = replay_law(c, res)
     assert np.all(np.isfinite(tau))
+
+
+def test_integral_flag_must_be_a_bool():
+    for bad in ("no", "False", 0, 1, None):
+        with pytest.raises(ScaraError, match=r"integral = .* must be True or False \(a bool\)"):
+            OperationalSpaceController(integral=bad)
+    assert OperationalSpaceController(integral=np.False_).integral is False
+
+
+def test_overflowing_steady_state_error_is_refused():
+    c = OperationalSpaceController(integral=False, K_P=(1200.0, 1200.0, 1e-10, 1200.0))
+    with pytest.raises(ScaraError, match=r"steady-state error is not finite .*K_P = \[1200\.0, 1200\.0, 1e-10, 1200\.0\], "
+                                         r"payload m_L = 1e\+300 kg\) overflow"):
+        c.steady_state_error(P0.with_payload(1e300))

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from scara import RobustController, UnstableError, inertia, simulate
+from scara import RobustController, ScaraError, UnstableError, inertia, simulate
 from scara.control import (
     B_HAT, TAU_MAX, chattering, design_inertia_estimate, inertia_eigenvalues, inertia_uncertainty, lyapunov_matrix,
     rho_bound, sliding_weight,
@@ -138,3 +138,26 @@ def test_boundary_layer_slider_steps_switch_runs(traj, jref):
         vis = step.args[0]["visible"]
         assert vis == [per * n <= i < per * (n + 1) for i in range(len(fig.data))]
         assert ("chatters" in step.args[1]["title.text"]) == (eps[n] <= 0.0159)
+
+
+def test_rho_bound_refuses_non_finite_bounds():
+    for args, name in [((np.nan, 1.0, 1.0), "alpha"), ((0.5, np.inf, 1.0), "qdd_max"), ((0.5, 1.0, np.nan), "eta0_max"),
+                       ((0.5, -1.0, 1.0), "qdd_max")]:
+        with pytest.raises(ScaraError, match=rf"{name} = "):
+            rho_bound(*args)
+    with pytest.raises(ScaraError, match=r"rho is not finite .*alpha = 0\.5, qdd_max = 1e\+308"):
+        rho_bound(0.5, 1e308, 1e308)
+
+
+def test_overflowing_designs_are_refused():
+    with pytest.raises(ScaraError, match=r"P = diag\(2 K_P Lambda, 2 \(K_D - Lambda\)\) is not finite .*K_P = \[1e\+308"):
+        sliding_weight(1e308, 1e308, 30.0)
+
+
+def test_payloads_must_be_masses():
+    q = np.array([[0.1, 1.0, 0.3, 0.0]])
+    for bad in ("abc", True, [[1.0, 2.0]]):
+        with pytest.raises(ScaraError, match=r"payloads"):
+            inertia_uncertainty(1.0, q, payloads=bad)
+        with pytest.raises(ScaraError, match=r"payloads"):
+            inertia_eigenvalues(1.0, q, payloads=bad)

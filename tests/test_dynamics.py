@@ -410,3 +410,34 @@ def test_plain_python_path_gives_the_same_numbers():
     err = np.abs(np.array(json.loads(out)) - ref).max()
     record("plain Python vs compiled", err)
     assert err < 1e-12  # compiled code may contract a*b+c into FMA: round-off only
+
+
+# -- huge but finite inputs: a non-finite result names the input that overflowed ------------------------------
+Q1 = [0.0, 1.0, 0.5, 0.0]
+HUGE = [1e300, 1e300, 0.0, 0.0]
+
+
+@pytest.mark.parametrize("call, what, name", [
+    (lambda: inverse_dynamics(Q1, HUGE, np.zeros(4)), r"tau = B qdd \+ C qd \+ F qd \+ g", "qd"),
+    (lambda: inverse_dynamics(Q1, np.zeros(4), [1e308, 0, 0, 0]), r"tau = B qdd \+ C qd \+ F qd \+ g", "qdd"),
+    (lambda: forward_dynamics(Q1, HUGE, np.zeros(4)), r"qdd = B\^-1 \(tau - C qd - F qd - g\)", "qd"),
+    (lambda: kinetic_energy(Q1, [1e200, 0, 0, 0]), r"kinetic energy qd\^T B qd / 2", "qd"),
+    (lambda: total_energy(Q1, [1e200, 0, 0, 0]), r"kinetic energy qd\^T B qd / 2", "qd"),
+    (lambda: regressor(Q1, HUGE, HUGE, np.zeros(4)), r"Y\(q, qd, qd_r, qdd_r\)", "qd"),
+    (lambda: potential_energy([0, 0, 1e308, 0], P0.with_payload(1e3)), r"potential energy U\(q\)", "d3"),
+])
+def test_overflowing_inputs_raise_non_finite_error_naming_them(call, what, name):
+    with pytest.raises(NonFiniteError, match=rf"{name} = .* gives a non-finite {what}: {name} is too large"):
+        call()
+
+
+def test_angles_beyond_max_angle_are_refused_by_the_dynamics():
+    for call in (lambda: inertia([0.0, 1e308, 0.5, 0.0]), lambda: coriolis([0.0, 2e6, 0.5, 0.0], np.zeros(4)),
+                 lambda: inverse_dynamics([[0.0, 1e7, 0.5, 0.0]], np.zeros((1, 4)), np.zeros((1, 4)))):
+        with pytest.raises(ScaraError, match=r"q\[.*\] = .* rad is beyond the largest angle .* MAX_ANGLE = 1e\+06 rad"):
+            call()
+
+
+def test_params_from_pi_refuses_a_bad_rtol():
+    with pytest.raises(ScaraError, match=r"rtol must be a number, got \{\}"):
+        params_from_pi(dynamic_parameters(), rtol={})

@@ -67,3 +67,10 @@ def test_non_finite_entries():
 def test_unknown_rule():
     with pytest.raises(ScaraError, match="rule = 'strict'"):
         gain_vector(1.0, "K", rule="strict")
+
+
+def test_boolean_gains_are_refused():
+    with pytest.raises(ShapeError, match=r"K must be a number, a vector of 4 numbers or a diagonal 4x4 matrix, got "
+                                         r"\[True, True, True, True\]"):
+        gain_vector([True] * 4, "K")
+    assert gain_vector(np.array([1, 2, 3, 4], dtype=object), "K").tolist() == [1.0, 2.0, 3.0, 4.0]

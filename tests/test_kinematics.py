@@ -191,7 +191,7 @@ def test_unreachable_outside_annulus_names_point_and_limit():
 
 @pytest.mark.parametrize("pz, d3", [(1.2, "-0.2"), (-0.1, "1.1")])
 def test_unreachable_outside_stroke(pz, d3):
-    with pytest.raises(UnreachableError, match=rf"d3 = d0 - p_z = {d3} m, outside the stroke 0 <= d3 <= d0 = 1 m"):
+    with pytest.raises(UnreachableError, match=rf"d3 = d0 - p_z = {d3} m, outside the stroke d3_min = 0 m <= d3 <= d3_max = 1 m"):
         ikine([0.5, 0.2, pz, 0.0])
     with pytest.raises(UnreachableError, match="stroke"):
         check_reachable([0.5, 0.2, pz])
@@ -222,3 +222,40 @@ def test_plain_python_path_gives_the_same_numbers():
     q = np.array([0.3, -1.1, 0.4, 0.2])
     ref = np.r_[pose(q), jacobian(q).ravel(), ikine(pose(q), elbow=-1)]
     assert np.array_equal(np.array(eval(out)), ref)
+
+
+# -- the stroke in ScaraParams, huge angles and overflowing results --------------------------------------------
+def test_ikine_and_reachability_use_the_stroke_of_the_params():
+    short = ScaraParams(d3_min=0.2, d3_max=0.6)
+    x = [0.5, 0.2, 0.9, 0.0]  # d3 = 0.1 m: inside 0..1 m, above a stroke starting at 0.2 m
+    assert ikine(x)[2] == pytest.approx(0.1)
+    with pytest.raises(UnreachableError, match=r"d3 = d0 - p_z = 0\.1 m, outside the stroke d3_min = 0\.2 m <= d3 <= "
+                                               r"d3_max = 0\.6 m"):
+        ikine(x, short)
+    with pytest.raises(UnreachableError, match=r"d3_min = 0\.2 m <= d3 <= d3_max = 0\.6 m"):
+        check_reachable(x, short)
+    assert is_reachable([[0.5, 0.2, 0.9], [0.5, 0.2, 0.5]], short).tolist() == [False, True]
+
+
+def test_angles_beyond_max_angle_are_refused():
+    with pytest.raises(ScaraError, match=r"q\[0\] = 1e\+308 rad .* \|theta\| <= MAX_ANGLE = 1e\+06 rad"):
+        pose([1e308, 1e308, 0.5, 1e308])
+    with pytest.raises(ScaraError, match=r"x\[3\] = 1e\+07 rad .* MAX_ANGLE = 1e\+06 rad"):
+        ikine([0.5, 0.2, 0.5, 1e7])
+    with pytest.raises(ScaraError, match=r"q\[1\] = -2e\+06 rad .* MAX_ANGLE"):
+        jacobian([0.0, -2e6, 0.5, 0.0])
+
+
+def test_jacobian_dot_with_overflowing_speeds_names_qd():
+    with pytest.raises(NonFiniteError, match=r"qd = \[1\.e\+308 1\.e\+308 0\.e\+000 0\.e\+000\] gives a non-finite "
+                                             r"Jdot_A\(q, qd\): qd is too large \(an entry of magnitude 1e\+308\)"):
+        jacobian_dot([0.0, 1.0, 0.5, 0.0], [1e308, 1e308, 0.0, 0.0])
+
+
+def test_wrong_types_raise_scara_errors():
+    with pytest.raises(ShapeError, match=r"q must be an array of numbers, got \[True, False, True, True\]"):
+        pose([True, False, True, True])
+    with pytest.raises(ScaraError, match=r"elbow = array\(\[1\]\) is not allowed: use \+1"):
+        ikine([0.5, 0.2, 0.5, 0.0], elbow=np.array([1]))
+    with pytest.raises(ScaraError, match=r"points must be an array of numbers, got 'abc'"):
+        is_reachable("abc")

@@ -115,3 +115,29 @@ def test_outline_needs_principal_axes_in_the_plane():
 def test_outline_plane_must_be_among_rows():
     with pytest.raises(ScaraError, match=r"plane = \(0, 2\) must name two distinct components among rows = \(0, 1\)"):
         velocity_ellipsoid([0.4, -1.3, 0.3, 0.0], rows=(0, 1)).outline(plane=(0, 2))
+
+
+def test_ellipsoid_rows_must_be_integer_indices():
+    q = [0.0, 1.0, 0.5, 0.0]
+    with pytest.raises(ScaraError, match=r"rows = \(0\.7, 1\.2\) must hold integer indices among 0\.\.2 .* its entry "
+                                         r"0\.7 is not one"):
+        velocity_ellipsoid(q, rows=(0.7, 1.2))
+    with pytest.raises(ScaraError, match=r"rows = \(0, 5\) must hold integer indices among 0\.\.2 .* its entry 5"):
+        force_ellipsoid(q, rows=(0, 5))
+    with pytest.raises(ScaraError, match=r"rows = \(1, 1\) must be distinct"):
+        velocity_ellipsoid(q, rows=(1, 1))
+    with pytest.raises(ScaraError, match=r"rows = True must be a sequence of integer indices"):
+        velocity_ellipsoid(q, rows=True)
+    with pytest.raises(ScaraError, match=r"plane = \(0\.2, 1\) must hold integer indices"):
+        velocity_ellipsoid(q).outline(plane=(0.2, 1))
+
+
+def test_workspace_map_grid_is_bounded_before_any_work():
+    from scara.manipulability import MAX_GRID
+    with pytest.raises(ScaraError, match=rf"n = 1000000000 grid points per side is outside the allowed range 3 <= n "
+                                         rf"<= {MAX_GRID}"):
+        workspace_map(n=10**9)
+    with pytest.raises(ScaraError, match=r"n = 2\.5 must be a whole number \(an int\) of grid points per side"):
+        workspace_map(n=2.5)
+    with pytest.raises(ScaraError, match=r"n = 1000000000\.0 must be a whole number \(an int\) of outline points"):
+        velocity_ellipsoid([0.0, 1.0, 0.5, 0.0]).outline(n=1e9)

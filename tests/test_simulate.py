@@ -22,7 +22,10 @@ from _largest import record
 
 P0 = ScaraParams()
 P5 = ScaraParams().with_payload(5.0)
-NOFRICTION = P5.replace(F_m=(0.0, 0.0, 0.0, 0.0))
+# free-motion tests let the quill fall for seconds: a plant with a 1 km stroke (the same dynamics; the stroke only
+# decides where the engine stops a run) keeps d3 inside its range
+LONG_STROKE = P5.replace(d3_max=1e3)
+NOFRICTION = LONG_STROKE.replace(F_m=(0.0, 0.0, 0.0, 0.0))
 Q0 = np.array([0.2, -1.0, 0.3, 0.1])
 
 
@@ -57,7 +60,7 @@ def test_energy_is_conserved_without_friction_and_torque():
 def test_friction_work_balances_the_energy_lost():
     """Released with friction and no torque: E(t) - E(0) = -int qd^T F qd dt. Simpson's rule on the 1 ms samples
     of a smooth motion is O(h^4): the balance must close to 1e-12 of the work dissipated."""
-    r = simulate(TorqueController(), plant=P5, duration=10.0, q0=Q0, qd0=[3.0, -6.0, 0.5, 6.0])
+    r = simulate(TorqueController(), plant=LONG_STROKE, duration=10.0, q0=Q0, qd0=[3.0, -6.0, 0.5, 6.0])
     en = r.energy()
     assert np.all(np.diff(en["friction_work"]) >= 0)
     err = np.abs(en["balance"]).max() / en["friction_work"][-1]
@@ -89,7 +92,7 @@ def _ivp(q0, qd0, tau, t_end, p, t_eval=None):
 
 def test_free_motion_matches_scipy():
     qd0 = np.array([2.0, -3.0, 0.2, 4.0])
-    r = simulate(TorqueController(), plant=P5, duration=2.0, q0=Q0, qd0=qd0)
+    r = simulate(TorqueController(), plant=LONG_STROKE, duration=2.0, q0=Q0, qd0=qd0)
     sol = _ivp(Q0, qd0, np.zeros(4), 2.0, P5, t_eval=r.t[::100])
     err = max(np.abs(sol.y[:4].T - r.q[::100]).max(), np.abs(sol.y[4:].T - r.qd[::100]).max())
     record("free motion vs DOP853", err)
@@ -405,3 +408,115 @@ def test_plant_acceleration_equals_forward_dynamics_for_random_robots(seed):
     assert code == 0
     ref = forward_dynamics(q, qd, tau, p)
     assert np.allclose(qdd, ref, rtol=1e-10, atol=1e-10 * np.abs(ref).max())
+
+
+# --------------------------------------------------------------------------------------------------
+# the inputs a run is checked against: time base, counts, the start state and the quill's stroke
+# --------------------------------------------------------------------------------------------------
+class _Traj:
+    """A trajectory of N samples at rest at the pose of Q0, with the sample times ``t`` and optionally ``dt``."""
+
+    def __init__(self, t, dt=None):
+        self.t = np.asarray(t, dtype=float)
+        self.x = np.tile(pose(Q0, P0), (len(self.t), 1))
+        self.xd = np.zeros_like(self.x)
+        self.xdd = np.zeros_like(self.x)
+        if dt is not None:
+            self.dt = dt
+
+
+def test_reference_sampled_at_another_period_is_refused():
+    """traj.t every 10 ms with no dt attribute (the run's dt defaults to 1 ms), or with dt = 1e-3 that its t
+    contradicts, or not uniform: the message names both spacings."""
+    c = PDGravityController()
+    t10 = np.arange(51) * 0.01
+    with pytest.raises(ScaraError, match=r"traj\.t is sampled every 0\.01 s but the run's dt = 0\.001 s"):
+        simulate(c, _Traj(t10), P0, joint_reference=joint_setpoint(Q0, 0.5, dt=0.01))
+    with pytest.raises(ScaraError, match=r"traj\.t is sampled every 0\.01 s but the run's dt = 0\.001 s"):
+        simulate(c, _Traj(t10, dt=1e-3), P0, joint_reference=joint_setpoint(Q0, 0.5, dt=0.01))
+    uneven = np.r_[0.0, np.cumsum(np.r_[np.full(25, 1e-3), np.full(25, 2e-3)])]
+    with pytest.raises(ScaraError, match=r"traj\.t is not uniform: its spacing ranges from 0\.001 s to 0\.002 s"):
+        simulate(c, _Traj(uneven), P0, joint_reference=joint_setpoint(Q0, 0.05))
+    # the same reference with the matching dt runs
+    r = simulate(c, _Traj(t10), P0, dt=0.01, joint_reference=joint_setpoint(Q0, 0.5, dt=0.01))
+    assert np.allclose(r.t, t10)
+
+
+def test_duration_must_be_a_whole_number_of_samples():
+    with pytest.raises(ScaraError, match=r"duration = 1 s is not a whole number of samples of dt = 0\.3 s.*"
+                                         r"nearest valid durations are 0\.9 s and 1\.2 s"):
+        joint_setpoint(Q0, 1.0, dt=0.3)
+    with pytest.raises(ScaraError, match=r"duration = 0\.0105 s .* 0\.01 s and 0\.011 s"):
+        simulate(TorqueController(), duration=0.0105, q0=Q0)
+    assert len(joint_setpoint(Q0, 0.9, dt=0.3)) == 4
+
+
+def test_counts_are_bounded_before_any_work():
+    c = PDGravityController()
+    ref = joint_setpoint(Q0, 0.1)
+    with pytest.raises(ScaraError, match=r"substeps = 1001 exceeds its limit 1000"):
+        simulate(c, plant=P5, joint_reference=ref, substeps=1001)
+    for bad in (1.5, "3", True, 2.0):
+        with pytest.raises(ScaraError, match=r"substeps = .* must be a whole number \(an int\) between 1 and 1000"):
+            simulate(c, plant=P5, joint_reference=ref, substeps=bad)
+    with pytest.raises(ScaraError, match=r"duration = 1e\+07 s at dt = 0\.001 s asks for 1e\+10 samples, past the "
+                                         r"limit of 5000000 samples"):
+        simulate(TorqueController(), duration=1e7, q0=Q0)
+    with pytest.raises(ScaraError, match=r"duration = 1e\+300 s .* past the limit"):
+        joint_setpoint(Q0, 1e300)
+    with pytest.raises(ScaraError, match="limit"):
+        simulate(c, plant=P5, joint_reference=ref, limit=float("nan"))
+
+
+def test_start_outside_the_quill_stroke_is_refused():
+    from scara import UnreachableError
+
+    for d3 in (-0.01, 1.2):
+        q0 = Q0.copy()
+        q0[2] = d3
+        with pytest.raises(UnreachableError, match=rf"q0: joint 3 \(d3\) = {d3:g} m is outside the quill's stroke "
+                                                   r"\[0, 1\] m"):
+            simulate(TorqueController(), duration=0.1, q0=q0)
+
+
+def test_falling_quill_stops_the_run_at_the_end_of_its_stroke():
+    """Open loop, motors off: from d3 = 0.3 m at 0.5 m/s down (and the 5 kg payload) the quill falls and passes
+    d3_max = 1 m after about 0.45 s; the run stops there, naming joint 3, the time and the value."""
+    with pytest.raises(UnstableError, match=r"t = 0\.4\d+ s \(sample 4\d\d\): joint 3 \(d3\) = 1\.00\d* m .* past "
+                                            r"d3_max of the quill's stroke \[0, 1\] m; the engine models no end stop"):
+        simulate(TorqueController(), plant=P5, duration=2.0, q0=Q0, qd0=[0.0, 0.0, 0.5, 0.0])
+    # the same fall, pushed up instead: past d3_min
+    with pytest.raises(UnstableError, match=r"joint 3 \(d3\) = -0\.\d+ m .* past d3_min"):
+        simulate(TorqueController(tau=(0.0, 0.0, -1000.0, 0.0)), plant=P5, duration=2.0, q0=Q0)
+
+
+def test_overloaded_quill_stops_the_run():
+    """A 1e6 kg payload under PD + gravity compensation (which believes in no payload): K_P3 = 1e4 N/m cannot hold
+    it (the sag would be 981 m), the quill runs out of its stroke and the run stops with the time and the value."""
+    with pytest.raises(UnstableError, match=r"the run of pd_gravity left the joint range at t = .* joint 3 \(d3\) = "
+                                            r"1\.\d+ m .* past d3_max"):
+        simulate(PDGravityController(), plant=P0.with_payload(1e6), joint_reference=joint_setpoint(Q0, 2.0), q0=Q0)
+
+
+def test_result_options_must_be_finite_and_positive(scenario):
+    _, r = scenario
+    for bad in (float("nan"), float("inf"), 0.0, -1.0):
+        with pytest.raises(ScaraError, match=r"window"):
+            r.summary(window=bad)
+
+
+def test_overflowing_steady_state_error_is_refused():
+    with pytest.raises(ScaraError, match=r"steady-state error is not finite .*K_P3 = 10000, payload m_L = 1e\+308 kg"):
+        PDGravityController().steady_state_error(P0.with_payload(1e308))
+
+
+def test_a_trajectory_without_its_fields_is_refused():
+    from types import SimpleNamespace
+
+    x = np.tile(pose(Q0, P0), (11, 1))
+    with pytest.raises(ScaraError, match=r"traj = SimpleNamespace has no attribute 'xd': a trajectory needs t, x, xd, "
+                                         r"xdd"):
+        ikine_reference(SimpleNamespace(x=x))
+    with pytest.raises(ScaraError, match=r"has no attribute 'x'"):
+        simulate(PDGravityController(), SimpleNamespace(t=np.arange(11) * 1e-3), P0,
+                 joint_reference=joint_setpoint(Q0, 0.01))

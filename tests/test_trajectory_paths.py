@@ -58,3 +58,21 @@ def test_arc_whose_ends_are_not_on_its_circle():
     arc = Arc(CENTRE, [0.28, 0.20, 0.5], [0.18, 0.20, 0.5])
     with pytest.raises(ScaraError, match=r"segment p0->p1: its end .* is not the waypoint"):
         plan_path([[0.28, 0.20, 0.5], [0.19, 0.2, 0.5]], durations=[2.0], arcs={0: arc})
+
+
+def test_overflowing_line_and_bad_radius_raise_scara_errors():
+    from scara import NonFiniteError
+    with pytest.raises(NonFiniteError, match=r"the line from start = \[1\.e\+308, 0\.e\+000, 0\.e\+000\] .* has a "
+                                             r"length that overflows"):
+        Line([1e308, 0.0, 0.0], [-1e308, 0.0, 0.0])
+    with pytest.raises(ScaraError, match=r"radius must be a number, got ''"):
+        Arc(CENTRE, CENTRE + [0.05, 0, 0], CENTRE - [0.05, 0, 0], radius="")
+
+
+def test_overflowing_arcs_raise_non_finite_errors():
+    from scara import NonFiniteError
+    with pytest.raises(NonFiniteError, match=r"the circle through start \[1\.e\+300, 0\.e\+000, 0\.e\+000\].* cannot be "
+                                             r"computed: the points are too far apart"):
+        Arc.through([1e300, 0, 0], [0, 1e300, 0], [-1e300, 0, 0])
+    with pytest.raises(NonFiniteError, match=r"has a radius that overflows"):
+        Arc([0, 0, 0], [1e300, 0, 0], [0, 1e300, 0])

@@ -380,3 +380,44 @@ def test_via_point_out_of_reach_is_refused_even_when_its_corner_is_not():
     assert np.hypot(raw.x[:, 0], raw.x[:, 1]).max() <= 1.0  # the rounded corner stays inside
     with pytest.raises(UnreachableError, match=r"waypoint p8 x = \[0\.99 +0\.2 +0\.5 *\] is unreachable"):
         plan_path(**plan)
+
+
+def test_trajectory_evaluate_refuses_nan_times():
+    from scara import NonFiniteError
+    tr = plan_path([[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]], durations=[2.0])
+    with pytest.raises(NonFiniteError, match=r"t\[0\] = nan is not a finite time"):
+        tr.evaluate([math.nan])
+
+
+def test_sample_count_is_bounded_before_any_work():
+    import re
+    from scara.trajectory.planner import MAX_SAMPLES
+    two = [[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]]
+    with pytest.raises(ScaraError, match=rf"duration of segment p0->p1 = 2 s is 2e\+09 sampling periods dt = 1e-09 s, "
+                                         r"more than a plan may hold \(MAX_SAMPLES = " + re.escape(f"{MAX_SAMPLES:g}") + r" samples\)"):
+        plan_path(two, durations=[2.0], dt=1e-9)
+    with pytest.raises(ScaraError, match=r"total = 1e\+06 s is 1e\+09 sampling periods .*\(MAX_SAMPLES = "
+                                         + re.escape(f"{MAX_SAMPLES:g}")):
+        plan_path(two, durations=[2.0], total=1e6)
+
+
+def test_wrong_types_of_planning_inputs_raise_scara_errors():
+    two = [[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]]
+    with pytest.raises(ScaraError, match=r"check = 'no' must be True or False"):
+        plan_path(two, durations=[2.0], check="no")
+    with pytest.raises(ShapeError, match=r"blends must be a sequence with one blend time .* got 0\.5"):
+        plan_path(two, durations=[2.0], blends=0.5)
+    with pytest.raises(ScaraError, match=r"blends\[0\] must be a number, got 'a'"):
+        plan_path(two, durations=[2.0], blends=["a"])
+    with pytest.raises(ScaraError, match=r"arcs must be a dict .* got True"):
+        plan_path(two, durations=[2.0], arcs=True)
+    with pytest.raises(ScaraError, match=r"phi = \{'a': 1\.0\} must be a number of radians"):
+        plan_path(two, durations=[2.0], phi={"a": 1.0})
+    with pytest.raises(ScaraError, match=r"phi at a waypoint must be a number of radians, got 'a'"):
+        Waypoint([0.3, 0.2, 0.5], phi="a")
+
+
+def test_plan_honours_the_stroke_of_the_params():
+    short = ScaraParams(d3_min=0.0, d3_max=0.4)  # p_z = 0.5 needs d3 = 0.5 m
+    with pytest.raises(UnreachableError, match=r"outside the stroke d3_min = 0 m <= d3 <= d3_max = 0\.4 m"):
+        plan_path([[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]], durations=[2.0], p=short)

@@ -61,3 +61,26 @@ def test_minimum_time_respects_the_limits_and_is_tight():
         n = rounded.duration / 1e-3
         assert abs(n - round(n)) < 1e-9 and law.duration <= rounded.duration < law.duration + 1e-3
         assert rounded.acceleration == pytest.approx(a) and rounded.cruise_speed <= v * (1 + 1e-12)
+
+
+def test_nan_and_infinite_times_are_refused():
+    from scara import NonFiniteError
+    law = Trapezoidal(length=0.3, duration=3.0, blend=1.0)
+    with pytest.raises(NonFiniteError, match=r"tau = nan is not a finite time; every time must be a finite number"):
+        law.evaluate(math.nan)
+    with pytest.raises(NonFiniteError, match=r"tau\[1\] = inf is not a finite time"):
+        law.evaluate_sorted([0.0, math.inf])
+
+
+def test_profile_too_long_for_its_duration_or_too_finely_sampled_is_refused():
+    from scara import ScaraError
+    import re
+    from scara.trajectory.timing import MAX_SEGMENT_SAMPLES
+    with pytest.raises(ScaraError, match=r"length = 1e\+300 m over duration = 1e-300 s .* not finite: the length is "
+                                         r"too large for the duration"):
+        Trapezoidal(1e300, 1e-300, 5e-301)
+    with pytest.raises(ScaraError, match=r"dt = 1e-300 s is too short .* MAX_SEGMENT_SAMPLES = "
+                                         + re.escape(f"{MAX_SEGMENT_SAMPLES:g}")):
+        Trapezoidal.minimum_time(1.0, 1.0, 1.0, dt=1e-300)
+    with pytest.raises(ScaraError, match=r"length must be a number, got True"):
+        Trapezoidal(True, 1.0, 0.5)

@@ -14,10 +14,11 @@ import time
 import numpy as np
 
 from .. import _compile
-from ..errors import ScaraError, UnstableError
+from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
 from ..gains import gain_vector
 from ..params import ScaraParams
 from ..simulate import LAW_SIGNATURE, OK, Controller, _compiled_law
+from ..simulate.interface import _count
 
 __all__ = [
     "TAU_MAX", "MAX_ERROR", "BOUND_FIELDS", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
@@ -27,6 +28,9 @@ __all__ = [
 #: The stated actuator bounds (N m, N m, N, N m): a law that asks for more stops the run (code 2). They are
 #: about three times the largest torque any of the book's runs needs with a 10 kg payload.
 TAU_MAX = (200.0, 200.0, 1000.0, 50.0)
+#: The largest ``repeats`` of :func:`law_cost` (and :func:`control_summary`): each repeat replays a whole run
+#: (70 001 samples for the book's reference), so 1000 of them already take minutes; the median settles with 5-10.
+MAX_REPEATS = 1000
 #: The stated bound on the tracking error a law tolerates (rad or m, per component): beyond it the run is
 #: treated as lost (code 3), long before the state becomes large enough for the engine's own limit.
 MAX_ERROR = 0.05
@@ -105,6 +109,35 @@ class BoundedController(Controller):
 # --------------------------------------------------------------------------------------------------
 # replaying a law on recorded samples: its own cost per step, and a check against another implementation
 # --------------------------------------------------------------------------------------------------
+def _run_series(result, shapes: dict) -> dict:
+    """The arrays ``{name: trailing shape}`` of a recorded run (a :class:`~scara.simulate.SimulationResult` or
+    any object with those attributes), each checked finite with shape ``(N, *trailing)`` and one common ``N``;
+    :class:`~scara.ScaraError` naming the missing or wrong attribute otherwise."""
+    out = {}
+    for name, trailing in shapes.items():
+        if not hasattr(result, name):
+            raise ScaraError(f"result = {type(result).__name__} has no attribute {name!r}: pass the result of "
+                             f"scara.simulate")
+        v = getattr(result, name)
+        out[name] = as_array(v, f"result.{name}", trailing, allow_batch=True) if trailing else \
+            as_array(v, f"result.{name}", (len(np.atleast_1d(v)),))
+    lengths = {name: len(v) for name, v in out.items()}
+    if len(set(lengths.values())) > 1:
+        raise ShapeError(f"the series of result must have one length (one row per sample), got {lengths}")
+    if min(lengths.values(), default=1) < 1:
+        raise ScaraError("result holds no sample")
+    return out
+
+
+def _check_controller(controller):
+    """``controller`` has what :func:`replay_law` needs (a controller of :mod:`scara.simulate`'s interface)."""
+    needs = ("law", "gains_array", "model_array", "initial_state", "work_rows", "signal_names")
+    missing = [a for a in needs if not hasattr(controller, a)]
+    if missing or getattr(controller, "law", None) is None:
+        raise ScaraError(f"controller = {controller!r} is not a controller of scara.simulate's interface (missing "
+                         f"{missing or ['a compiled law']})")
+
+
 def _replay(law, q, qd, ref, dt, gains, model, state, work, sig, tau):
     n = q.shape[0]
     for k in range(n):
@@ -134,18 +167,21 @@ def replay_law(controller, result, n: int | None = None):
     produced the run. Used to time the law (:func:`law_cost`) and to check it against another
     implementation.
     """
-    n = len(result.t) if n is None else int(n)
-    q = np.ascontiguousarray(result.q[:n])
-    qd = np.ascontiguousarray(result.qd[:n])
-    ref = np.ascontiguousarray(result.reference[:n])
+    _check_controller(controller)
+    run = _run_series(result, {"t": (), "q": (4,), "qd": (4,), "reference": (12,)})
+    dt = check_positive(getattr(result, "dt", None), "result.dt")
+    n_run = len(run["t"])
+    n = n_run if n is None else _count(n, "n", 1, n_run, f"the run has {n_run} samples")
+    q = np.ascontiguousarray(run["q"][:n])
+    qd = np.ascontiguousarray(run["qd"][:n])
+    ref = np.ascontiguousarray(run["reference"][:n])
     gains = np.ascontiguousarray(controller.gains_array(), dtype=float)
     model = np.ascontiguousarray(controller.model_array(), dtype=float)
     state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
     work = np.zeros((max(int(controller.work_rows), 1), 4))
     sig = np.zeros((n, len(controller.signal_names)))
     tau = np.zeros((n, 4))
-    k = _replay_kernel(_compiled_law(controller.law), q, qd, ref, float(result.dt), gains, model, state, work, sig,
-                       tau)
+    k = _replay_kernel(_compiled_law(controller.law), q, qd, ref, dt, gains, model, state, work, sig, tau)
     if k >= 0:
         raise UnstableError(f"the law of {controller.name} returned a failure at sample {k} while replaying")
     return tau, sig, state
@@ -154,11 +190,16 @@ def replay_law(controller, result, n: int | None = None):
 def law_cost(controller, result, repeats: int = 7) -> float:
     """Compute time of one control step of ``controller``'s compiled law (s): the median over ``repeats``
     replays of the recorded run (:func:`replay_law`) divided by the number of samples. It includes the call
-    through the engine's function pointer, as in a real run, and nothing of the plant."""
-    n = len(result.t)
+    through the engine's function pointer, as in a real run, and nothing of the plant.
+
+    ``repeats`` is a whole number from 1 to :data:`MAX_REPEATS` (1000); anything else raises
+    :class:`~scara.ScaraError` before any replay."""
+    repeats = _count(repeats, "repeats", 1, MAX_REPEATS, "each repeat replays the whole run")
+    _check_controller(controller)
+    n = len(_run_series(result, {"t": ()})["t"])
     replay_law(controller, result, min(n, 100))  # warm up
     times = []
-    for _ in range(max(1, int(repeats))):
+    for _ in range(repeats):
         t0 = time.perf_counter()
         replay_law(controller, result)
         times.append(time.perf_counter() - t0)
@@ -175,7 +216,7 @@ def chattering(result) -> float:
     A smooth torque changes by ``O(dt^2)`` in its second difference (about ``1e-4`` here); a torque that
     switches sign every sample of amplitude ``A`` gives ``4 A``.
     """
-    tau = np.asarray(result.tau, dtype=float)
+    tau = _run_series(result, {"tau": (4,)})["tau"]
     if len(tau) < 3:
         return 0.0
     d2 = tau[2:] - 2.0 * tau[1:-1] + tau[:-2]
@@ -192,9 +233,17 @@ def control_summary(result, controller=None, *, settle: float = 1.0, rest: float
     arm is still); ``final_error_z`` (m): mean vertical error there (signed); ``peak_tau`` (4,) largest absolute
     torques (N m, N m, N, N m); ``chattering`` (:func:`chattering`); ``step_cost`` (s): compute time per
     control step (:func:`law_cost`; only when ``controller`` is given, else NaN).
+
+    ``settle`` (s) must be finite and ``>= 0``, ``rest`` (s) finite and ``> 0``, ``repeats`` a whole number from 1
+    to :data:`MAX_REPEATS`: :class:`~scara.ScaraError` otherwise.
     """
-    t = np.asarray(result.t)
-    e = np.asarray(result.e)
+    settle = check_positive(settle, "settle", strict=False)
+    rest = check_positive(rest, "rest")
+    repeats = _count(repeats, "repeats", 1, MAX_REPEATS, "each repeat replays the whole run")
+    if controller is not None:
+        _check_controller(controller)
+    run = _run_series(result, {"t": (), "e": (4,), "tau": (4,)})
+    t, e = run["t"], run["e"]
     pos = np.linalg.norm(e[:, :3], axis=1)
     after = t >= t[0] + settle - 1e-12
     if not after.any():
@@ -207,7 +256,7 @@ def control_summary(result, controller=None, *, settle: float = 1.0, rest: float
         "max_phi_error": float(np.abs(e[after, 3]).max()),
         "final_error": float(pos[last].max()),
         "final_error_z": float(e[last, 2].mean()),
-        "peak_tau": np.abs(result.tau).max(axis=0),
+        "peak_tau": np.abs(run["tau"]).max(axis=0),
         "chattering": chattering(result),
         "step_cost": law_cost(controller, result, repeats) if controller is not None else math.nan,
     }

@@ -38,17 +38,28 @@ def adaptation_gains(K_pi) -> np.ndarray:
                 raise ScaraError(f"K_pi names {key!r}, which is not a parameter; choose from {PI_NAMES}")
             full[PI_NAMES.index(key)] = float(positive_gains(val, f"K_pi[{key!r}]", 1)[0])
         K_pi = full
-    arr = np.asarray(K_pi, dtype=float)
-    if arr.ndim == 0:
+    if isinstance(K_pi, (str, bytes, bool, np.bool_)):
+        raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got {K_pi!r}")
+    try:
+        shape = np.shape(K_pi)
+    except ValueError as exc:  # a ragged sequence
+        raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got {K_pi!r}") from exc
+    if shape == ():
         full = np.full(N_PI, np.inf)
-        full[0] = arr
-        arr = full
-    if arr.shape != (N_PI,):
-        raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got shape {arr.shape}")
-    arr = positive_gains(arr, "K_pi", N_PI, allow_inf=True)
+        full[0] = positive_gains(K_pi, "K_pi", 1)[0]
+        K_pi = full
+    elif shape != (N_PI,):
+        raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got shape {shape}")
+    arr = positive_gains(K_pi, "K_pi", N_PI, allow_inf=True)
     if np.all(np.isinf(arr)):
         raise ScaraError("K_pi freezes every parameter (all entries infinite): nothing would adapt")
-    return 1.0 / arr
+    with np.errstate(over="ignore"):
+        inv = 1.0 / arr
+    if not np.all(np.isfinite(inv)):
+        i = int(np.argmax(~np.isfinite(inv)))
+        raise ScaraError(f"K_pi[{i}] = {arr[i]:g} ({PI_NAMES[i]}) is too small: its inverse, the adaptation rate, "
+                         f"is not finite")
+    return inv
 
 
 #: The law's gain array (``K_pi_inv = K_pi^-1``).

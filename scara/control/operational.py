@@ -19,6 +19,7 @@ from ..errors import UnstableError
 from ..kinematics import _params, jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..params import ScaraParams
 from ..simulate import control_law
+from ..simulate.interface import _finite_result, _flag
 from ._common import BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code
 
 __all__ = ["OperationalSpaceController"]
@@ -87,7 +88,7 @@ class OperationalSpaceController(BoundedController):
 
     Parameters
     ----------
-    integral : bool, default True.
+    integral : bool, default True (a ``bool`` or numpy bool: any other value raises :class:`~scara.ScaraError`).
     K_P, K_D, K_I : 4 positive gains each (1/s^2, 1/s, 1/s^3), per component ``[x, y, z, phi]``. Defaults
         ``K_P = 1200``, ``K_D = 60``, ``K_I = 8000``: with the integral, ``(s + 20)^3`` is the nominal error
         polynomial ``s^3 + K_D s^2 + K_P s + K_I`` (a triple pole at 20 rad/s). ``K_I`` is ignored when
@@ -112,7 +113,7 @@ class OperationalSpaceController(BoundedController):
 
     def __init__(self, integral: bool = True, K_P=1200.0, K_D=60.0, K_I=8000.0, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
-        self.integral = bool(integral)
+        self.integral = _flag(integral, "integral")
         self.K_P = positive_gains(K_P, "K_P")
         self.K_D = positive_gains(K_D, "K_D")
         if self.integral:
@@ -152,7 +153,10 @@ class OperationalSpaceController(BoundedController):
         if q is None:
             q = np.array([0.0, -np.pi / 2, 0.5, 0.0])
         y = np.linalg.solve(inertia(q, self.model), gravity(q, plant) - gravity(q, self.model))
-        return jacobian(q, self.model) @ y / self.K_P
+        with np.errstate(over="ignore", invalid="ignore"):
+            e = jacobian(q, self.model) @ y / self.K_P
+        return _finite_result(e, "the steady-state error",
+                              f"(K_P = {self.K_P.tolist()}, payload m_L = {plant.m_L:g} kg)")
 
     def __repr__(self):
         return (f"OperationalSpaceController(integral={self.integral}, K_P={self.K_P.tolist()}, "

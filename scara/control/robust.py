@@ -20,10 +20,11 @@ import numpy as np
 
 from .._compile import ArrayLayout
 from ..dynamics import friction_kernel, gravity_kernel, inertia
-from ..errors import ScaraError, UnstableError, as_array, check_positive
+from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
 from ..kinematics import _params
 from ..params import ScaraParams
 from ..simulate import control_law
+from ..simulate.interface import _finite_result
 from ._common import BOUND_FIELDS, ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains
 
 __all__ = ["RobustController", "sliding_weight", "lyapunov_matrix", "sliding_matrix", "inertia_uncertainty",
@@ -60,7 +61,10 @@ def sliding_weight(K_P, K_D, Lambda) -> np.ndarray:
         i = int(np.argmax(lam >= K_D))
         raise UnstableError(f"Lambda[{i}] = {lam[i]:g} must be < K_D[{i}] = {K_D[i]:g}: the weight P of the Lyapunov "
                             f"equation (its velocity block 2 (K_D - Lambda)) would not be positive definite")
-    return np.diag(np.concatenate([2.0 * K_P * lam, 2.0 * (K_D - lam)]))
+    with np.errstate(over="ignore", invalid="ignore"):
+        P = np.diag(np.concatenate([2.0 * K_P * lam, 2.0 * (K_D - lam)]))
+    return _finite_result(P, "P = diag(2 K_P Lambda, 2 (K_D - Lambda))",
+                          f"K_P = {K_P.tolist()}, K_D = {K_D.tolist()}, Lambda = {lam.tolist()}")
 
 
 def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
@@ -77,7 +81,8 @@ def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
 
     H = np.block([[np.zeros((4, 4)), np.eye(4)], [-np.diag(K_P), -np.diag(K_D)]])
     Q = solve_continuous_lyapunov(H.T, -P)
-    return 0.5 * (Q + Q.T)
+    return _finite_result(0.5 * (Q + Q.T), "the Lyapunov matrix Q",
+                          f"K_P = {K_P.tolist()}, K_D = {K_D.tolist()} and P (largest entry {np.abs(P).max():g})")
 
 
 def sliding_matrix(K_P, K_D, P) -> np.ndarray:
@@ -89,11 +94,21 @@ def sliding_matrix(K_P, K_D, P) -> np.ndarray:
 def _inertias(q, payloads, p):
     p = _params(p)
     q = as_array(q, "q", (4,), allow_batch=True).reshape(-1, 4)
-    pays = np.atleast_1d(np.asarray(payloads, dtype=float))
+    if len(q) == 0:
+        raise ShapeError("q holds no configuration: the bounds over the configurations need at least one (N >= 1)")
+    try:
+        if isinstance(payloads, (str, bytes, bool, np.bool_)):
+            raise TypeError(payloads)
+        pays = np.atleast_1d(np.asarray(payloads, dtype=float))
+    except (TypeError, ValueError) as exc:
+        raise ScaraError(f"payloads = {payloads!r} must be a number or a list of masses (kg)") from exc
+    if pays.ndim != 1 or pays.size == 0:
+        raise ShapeError(f"payloads must be a number or a list of masses (kg), got shape {pays.shape}")
     if np.any(pays < 0) or not np.all(np.isfinite(pays)):
         raise ScaraError(f"payloads = {pays.tolist()} must be finite masses >= 0 kg")
     plants = [p.with_payload(float(m)) for m in pays]  # one parameter object per payload, not per configuration
-    return q, np.array([inertia(qk, pm) for pm in plants for qk in q])
+    Bs = np.array([inertia(qk, pm) for pm in plants for qk in q])
+    return q, _finite_result(Bs, "the inertia matrix B(q)", f"payloads = {pays.tolist()} kg")
 
 
 def inertia_eigenvalues(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = None) -> tuple[float, float]:
@@ -105,6 +120,7 @@ def inertia_eigenvalues(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = 
     Bh = np.diag(positive_gains(B_hat, "B_hat"))
     _, Bs = _inertias(q, payloads, p)
     lam = np.linalg.eigvals(np.linalg.solve(Bs, np.broadcast_to(Bh, Bs.shape))).real
+    _finite_result(lam, "the eigenvalues of B^-1 B_hat", f"B_hat = {np.diag(Bh).tolist()}, payloads = {payloads!r}")
     return float(lam.min()), float(lam.max())
 
 
@@ -117,6 +133,7 @@ def inertia_uncertainty(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = 
     Bh = np.diag(positive_gains(B_hat, "B_hat"))
     _, Bs = _inertias(q, payloads, p)
     M = np.eye(4) - np.linalg.solve(Bs, np.broadcast_to(Bh, Bs.shape))
+    _finite_result(M, "I - B^-1 B_hat", f"B_hat = {np.diag(Bh).tolist()}, payloads = {payloads!r}")
     return float(np.linalg.norm(M, 2, axis=(1, 2)).max())
 
 
@@ -144,11 +161,17 @@ def rho_bound(alpha: float, qdd_max: float, eta0_max: float) -> float:
     ``rho >= (alpha qdd_max + eta0_max) / (1 - alpha)``, with ``qdd_max`` the largest ``||qdd_d||`` (rad/s^2) and
     ``eta0_max`` the largest ``||B^-1 n_tilde||`` (the model error the robust term must cover, rad/s^2).
 
-    Raises :class:`~scara.UnstableError` when ``alpha >= 1`` (no ``rho`` is enough).
+    Raises :class:`~scara.ScaraError` when an argument is not a finite number (``qdd_max``, ``eta0_max`` must
+    be ``>= 0``), :class:`~scara.UnstableError` when ``alpha`` is not in ``[0, 1)`` (no ``rho`` is enough), and
+    :class:`~scara.NonFiniteError` when the bound overflows.
     """
-    if not 0 <= alpha < 1:
+    alpha = check_positive(alpha, "alpha", strict=False)
+    qdd_max = check_positive(qdd_max, "qdd_max", strict=False)
+    eta0_max = check_positive(eta0_max, "eta0_max", strict=False)
+    if not alpha < 1:
         raise UnstableError(f"alpha = {alpha:.3g} must be < 1 for the robust term to dominate the uncertainty")
-    return (alpha * qdd_max + eta0_max) / (1.0 - alpha)
+    rho = (alpha * qdd_max + eta0_max) / (1.0 - alpha)
+    return _finite_result(rho, "rho", f"alpha = {alpha:g}, qdd_max = {qdd_max:g}, eta0_max = {eta0_max:g}")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -280,7 +303,8 @@ class RobustController(BoundedController):
         den = 2.0 - lam_max * kd * dt
         if den <= 0:
             raise UnstableError(f"K_D = {kd:g} alone is past the sampling limit 2 / (lam_max dt) = {2 / (lam_max * dt):g}")
-        return lam_max * self.rho * dt / den
+        return _finite_result(lam_max * self.rho * dt / den, "the boundary-layer bound",
+                              f"lam_max = {lam_max:g}, rho = {self.rho:g}, dt = {dt:g}")
 
     def uncertainty(self, result) -> np.ndarray:
         """``eta = y - qdd`` (N, 4) along a run of this controller: the modelling error the robust term had to

@@ -21,6 +21,7 @@ from ._common import (
     AXIS_COLOURS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, METHOD_DASHES, METHOD_LABELS, PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
+from ._common import MAX_POINTS, check_count
 from .layout import finish_layout, stacked_axes
 
 __all__ = [
@@ -62,7 +63,11 @@ def _results(results) -> list:
 def clik_joints_figure(results, points: int = 800, title: str | None = None, height: int = 560) -> go.Figure:
     """Joint motion in three stacked panels sharing the time axis: the revolute joints ``θ1, θ2, θ4`` (rad),
     the quill ``d3`` (m), and the revolute joint rates (rad/s). One column, so that it reads at phone width;
-    each joint keeps its colour and dash style. With several results a dropdown picks the method shown."""
+    each joint keeps its colour and dash style. With several results a dropdown picks the method shown.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     rs = _results(results)
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05, row_heights=[0.4, 0.25, 0.35])
     groups, titles = [], []
@@ -92,7 +97,11 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
                       settle: float = 0.0) -> go.Figure:
     """Norm of the position error (top, m) and orientation error ``|e_phi|`` (bottom, rad) on log axes, one
     curve per method (upper envelope; method colour and dash). For the pseudo-inverse only the kept
-    components count."""
+    components count.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in rs:
@@ -109,7 +118,11 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
 def error_components_figure(results, points: int = 1000, title: str | None = None, height: int = 520) -> go.Figure:
     """The four components of ``e = x_d - x_e``, signed: position (m, top) and phi (rad, bottom), each component
     with its colour and dash style. With several results a dropdown picks the method shown (the axes rescale
-    to it)."""
+    to it).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.65, 0.35])
     groups, titles = [], []
@@ -134,7 +147,11 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
 
 def manipulability_figure(results, points: int = 1000, title: str | None = None, height: int = 400) -> go.Figure:
     """Manipulability ``w(t) = a1 a2 |sin theta2|`` along each run (method colour and dash); the axis reaches the
-    largest possible value ``a1 a2``."""
+    largest possible value ``a1 a2``.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     rs = _results(results)
     fig = go.Figure()
     for r in rs:
@@ -152,7 +169,11 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
                  title: str | None = None, height: int = 520) -> go.Figure:
     """What the free component does: top, the relaxed coordinate reached by the pseudo-inverse against the
     planned one (and the run ``reference``, e.g. the inverse CLIK, which follows the plan); bottom, the elbow
-    angle ``theta2`` of both runs, with ``±90°`` (best dexterity) marked."""
+    angle ``theta2`` of both runs, with ``±90°`` (best dexterity) marked.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     r = _results(relaxed)[0]
     if r.method != "pseudoinverse":
         raise ScaraError(f"drift_figure needs a pseudo-inverse run, got method {r.method!r}")
@@ -181,7 +202,11 @@ def transpose_stability_figure(stability: TransposeStability, runs: dict, points
     """Top: the largest gain scale Euler's rule tolerates at each instant, ``2 / (dt mu_max(t))`` for the seed
     direction of ``K``, with the scales of ``runs`` as horizontal lines. Bottom: the position error of each run
     (``{label: ClikResult}``, e.g. the partial result of a diverged run) on a log axis. The runs are drawn in
-    the transpose's colour, told apart by their dash style."""
+    the transpose's colour, told apart by their dash style.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     st = stability
     dt = 2.0 / st.limit
     idx = thin(len(st.t), points)
@@ -205,7 +230,11 @@ def transpose_stability_figure(stability: TransposeStability, runs: dict, points
 def damping_figure(runs: dict, points: int = 1500, title: str | None = None, height: int = 560) -> go.Figure:
     """Runs on a near-singular path (``{label: ClikResult}``): joint-1 rate (top), position error (middle,
     log) and manipulability (bottom). Each run takes its method's colour; runs of the same method are told
-    apart by their dash style (the first solid)."""
+    apart by their dash style (the first solid).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06)
     seen: dict = {}
     for label, r in runs.items():
@@ -228,7 +257,11 @@ def damping_figure(runs: dict, points: int = 1500, title: str | None = None, hei
 def second_order_figure(result: ClikResult, points: int = 1000, title: str | None = None,
                         height: int = 560) -> go.Figure:
     """The joint reference a second-order CLIK hands to the controllers: ``q``, ``qd`` and ``qdd`` per joint
-    (revolute joints in rad, rad/s, rad/s²; ``d3`` in m, m/s, m/s²), each joint with its colour and dash."""
+    (revolute joints in rad, rad/s, rad/s²; ``d3`` in m, m/s, m/s²), each joint with its colour and dash.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     r = _results(result)[0]
     if r.qdd is None:
         raise ScaraError("second_order_figure needs a clik2 result (with qdd)")
@@ -288,7 +321,11 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
 
     Scales past a method's discrete-time stability limit are skipped for that method (the curve is absent and
     the title says so). At most 25 scales.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work.
     """
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     scales = np.asarray(GAIN_SCALES if scales is None else scales, dtype=float)
     if not 1 <= len(scales) <= 25:
         raise ScaraError(f"gain_slider_figure takes 1 to 25 scales, got {len(scales)}")

@@ -21,6 +21,7 @@ from ._common import (
     AXIS_COLOURS, CONTROLLER_DASHES, CONTROLLER_LABELS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, check_count
 from .layout import finish_layout, stacked_axes
 
 __all__ = [
@@ -55,7 +56,11 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
     the revolute joints ``θ1, θ2, θ4`` (rad), the quill ``d3`` (m), the joint velocities (rad/s and m/s) and
     accelerations (rad/s² and m/s²). Each joint keeps its colour and dash style. The acceleration axis is
     scaled to the motion after the first 50 ms; the start transient of ``d̈3`` (the unknown payload pulling
-    the quill down before the controller reacts) runs off that scale, and a note gives its peak."""
+    the quill down before the controller reacts) runs off that scale, and a note gives its peak.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04, row_heights=[0.3, 0.2, 0.25, 0.25])
     groups, menu, ranges, notes = [], [], [], []
@@ -95,7 +100,11 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
 def operational_error_figure(results, points: int = 600, title: str | None = None, height: int = 600) -> go.Figure:
     """Operational error ``x_d - x_e`` of each run, one run at a time (dropdown): the components x, y, z (mm)
     and phi (mrad) on top, the norm of the position error (m, log scale, envelope, in the controller's colour)
-    below."""
+    below.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
     groups, menu = [], []
@@ -118,7 +127,11 @@ def error_norm_figure(results, points: int = 1000, title: str | None = None, hei
                       settle: float | None = 1.0) -> go.Figure:
     """The norm of the position error ``||p_d - p_e||`` (m, log scale, envelope) of several runs together, each
     in its controller's colour and dash style; a dotted line marks the end of the first ``settle`` seconds that
-    the comparison table leaves out."""
+    the comparison table leaves out.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
     fig = go.Figure()
     for label, r in runs.items():
@@ -134,7 +147,11 @@ def error_norm_figure(results, points: int = 1000, title: str | None = None, hei
 
 def torque_figure(results, points: int = 500, title: str | None = None, height: int = 760) -> go.Figure:
     """The torques and the quill's force of several runs overlaid, one panel per joint stacked on a shared time
-    axis (N m, N m, N, N m); each controller in its colour and dash style."""
+    axis (N m, N m, N, N m); each controller in its colour and dash style.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
     names = ("τ1 (N m)", "τ2 (N m)", "f3 (N)", "τ4 (N m)")
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04)
@@ -150,7 +167,11 @@ def torque_figure(results, points: int = 500, title: str | None = None, height: 
 def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, points: int = 1000,
                             title: str | None = None, height: int = 540) -> go.Figure:
     """The adaptive payload estimate: its first ``horizon`` seconds against the true mass (top, kg), and the
-    estimation error ``|m_hat - m_L|`` over the whole run (bottom, kg, log scale)."""
+    estimation error ``|m_hat - m_L|`` over the whole run (bottom, kg, log scale).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     if "payload_estimate" not in getattr(result, "signals", {}):
         raise ScaraError("this run carries no payload_estimate: it is not an adaptive run")
     est = result.payload_estimate
@@ -176,7 +197,11 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
                        title: str | None = None, height: int = 580) -> go.Figure:
     """The robust term: ``||z||`` (rad/s and m/s mixed, log scale) against the boundary layer ``epsilon``
     (top) and the components of ``w`` (bottom, rad/s^2 and m/s^2), over ``window = (t0, t1)`` (s; default the
-    whole run)."""
+    whole run).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     t = result.t
     sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
     idx = np.flatnonzero(sel)
@@ -209,9 +234,16 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
     """Static slider over the boundary-layer width: for each ``{epsilon: result}`` of a robust run, the torques
     of the revolute joints (top, N m; the quill's force hardly chatters) and ``||z||`` against ``epsilon``
     (bottom, log) over ``window`` at full sampling, so that the sample-to-sample switching below ``bound`` (the
-    sampled layer's stability limit) is visible. The title (two lines) says whether the step chatters."""
-    if not runs:
-        raise ScaraError("give at least one {epsilon: result} pair")
+    sampled layer's stability limit) is visible. The title (two lines) says whether the step chatters.
+
+    Limits: at most 121 runs (``MAX_STEPS``) and 100 000 samples in the window over all of them
+    (``MAX_SLIDER_SAMPLES``); more raises :class:`ScaraError` before any work."""
+    if not isinstance(runs, dict) or not runs:
+        raise ScaraError(f"runs must be a non-empty dict {{epsilon: result}}, got {runs!r:.80}")
+    check_count(len(runs), "len(runs)", MAX_STEPS, what="runs (slider steps)")
+    in_window = sum(int(np.count_nonzero((r.t >= window[0]) & (r.t <= window[1]))) for r in runs.values())
+    check_count(in_window, f"the window {tuple(window)} s", MAX_SLIDER_SAMPLES, minimum=0,
+                what="samples over all the runs")
     eps_list = sorted(runs)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.1)
     joints = (0, 1, 3)
@@ -246,7 +278,11 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
                         points: int = 1000, title: str | None = None, height: int = 580) -> go.Figure:
     """Vertical error ``e_z`` (mm) of the operational controller without and with integral action, against the
     predicted ``m_L g0 / (B33_hat K_P,z)`` (top); the integral action ``K_I s_z`` (m/s^2) approaching the
-    acceleration ``m_L g0 / B33_hat`` it must supply (bottom)."""
+    acceleration ``m_L g0 / B33_hat`` it must supply (bottom).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in (without_integral, with_integral):
         idx = thin(len(r.t), points)
@@ -289,7 +325,11 @@ def tuning_series(result, points: int = 1200) -> list:
     """The ``(t, y)`` arrays of :func:`tuning_figure`'s six traces, in order: the position error norm (upper
     envelope), the quill's force, the other three torques, and the run's own signal (payload estimate,
     ``||z||`` envelope or ``e_z`` in mm), as float32 (what the figure holds). A live panel redraws a run of
-    the same controller from these alone."""
+    the same controller from these alone.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     tt, yy = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
     idx = thin(len(result.t), points)
     t = result.t[idx]
@@ -326,7 +366,11 @@ def tuning_title(result, summary: dict, extra: str = "") -> str:
 def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, height: int = 640) -> go.Figure:
     """The live panel's figure for one run: the position error norm (log), the quill's force and the other
     torques, and the run's own signal (payload estimate, ``||z||`` or the integral action); data from
-    :func:`tuning_series`, title from :func:`tuning_title`."""
+    :func:`tuning_series`, title from :func:`tuning_title`.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
                         specs=[[{}], [{"secondary_y": True}], [{}]])
     series = tuning_series(result, points)

@@ -8,6 +8,7 @@ import plotly.graph_objects as go
 from ..kinematics import _params
 from ..manipulability import manipulability
 from ._common import PALETTE, as_list, slider
+from ._common import MAX_POINTS, MAX_STEPS, check_count
 from .kinematics import arm_geometry
 from .layout import finish_layout
 from .trajectory import _waypoint_traces, decimate
@@ -29,12 +30,17 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
     The scene is cropped to the box that holds the path and every drawn arm (equal scales on x and y, the
     height drawn shorter), so that the path fills the figure instead of the whole reach of the arm; hover on
     a point for its name.
+
+    Limits: ``steps`` from 1 to 121 slider steps (``MAX_STEPS``); ``points`` from 2 to 10 000 samples per curve
+    (``MAX_POINTS``); a value outside, or not a whole number, raises :class:`ScaraError` before any work.
     """
+    steps = check_count(steps, "steps", MAX_STEPS, minimum=1, what="slider steps")
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     p = _params(p)
     k = decimate(traj, points)
     q = traj.joints()
     w = manipulability(q[k], p)
-    times = np.linspace(0.0, traj.t[-1], int(steps))
+    times = np.linspace(0.0, traj.t[-1], steps)
     idx = np.minimum(np.round(times / traj.dt).astype(int), traj.t.size - 1)
     arms = [arm_geometry(q[i], p)["arm"] for i in idx]
 

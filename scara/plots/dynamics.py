@@ -12,6 +12,7 @@ from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError
 from ..kinematics import _params
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, f32, slider, thin
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, check_count
 from .layout import finish_layout, stacked_axes
 
 __all__ = [
@@ -65,7 +66,11 @@ def torque_terms_figure(t, breakdown: dict, target: int = 1500,
                         title: str = "Torque terms", height: int = 500) -> go.Figure:
     """Every term of :func:`~scara.dynamics.torque_breakdown` against time (decimated), for one joint at a
     time: a dropdown (works on a static page) picks the joint, joint 1 first. Each term keeps its colour and
-    gets its own dash style."""
+    gets its own dash style.
+
+    Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = go.Figure()
@@ -88,7 +93,11 @@ def payload_torque_figure(t, torques: dict, target: int = 1500,
                           height: int = 520) -> go.Figure:
     """Torques of several cases (``torques`` maps a label, e.g. ``"no payload"``, ``"5 kg"``, to an (N, 4)
     series): the revolute joints 1, 2, 4 on top (N m, colour per joint), the quill's force below (N); one dash
-    style per case."""
+    style per case.
+
+    Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
@@ -109,9 +118,18 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
     step per mass restyles the four torque traces (revolute joints 1, 2, 4 on top in N m, the quill's force
     below in N) and the title. The torques of the ``baseline`` mass (default: the first) stay drawn as thin
     grey lines for comparison. ``active`` is the index of the mass shown first (default 0). Works in the HTML
-    with no kernel."""
-    if not torques_by_mass:
-        raise ScaraError("torques_by_mass is empty: give at least one payload mass")
+    with no kernel.
+
+    Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``), at most 121 masses (``MAX_STEPS``)
+    and at most 100 000 samples per curve in all the steps together (masses × ``target``,
+    ``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises :class:`ScaraError` before any work."""
+    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
+    if not isinstance(torques_by_mass, dict) or not torques_by_mass:
+        raise ScaraError("torques_by_mass must be a non-empty dict {payload mass (kg): (N, 4) torques}, "
+                         f"got {torques_by_mass!r:.80}")
+    check_count(len(torques_by_mass), "len(torques_by_mass)", MAX_STEPS, what="payload masses (slider steps)")
+    check_count(len(torques_by_mass) * target, f"{len(torques_by_mass)} masses × target {target}",
+                MAX_SLIDER_SAMPLES, what="samples per curve in all the slider steps")
     t = np.asarray(t)
     idx = thin(len(t), target)
     masses = list(torques_by_mass)
@@ -155,7 +173,11 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
                   height: int = 540) -> go.Figure:
     """Top: kinetic energy, potential energy and total energy (relative to their start values), the work
     dissipated by friction and the work done by the torques; bottom: the balance residual
-    ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`."""
+    ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`.
+
+    Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.7, 0.3], vertical_spacing=0.1)

@@ -15,6 +15,7 @@ import plotly.graph_objects as go
 from ..errors import ScaraError, as_array, as_vector
 from ..kinematics import _params, ikine, jacobian, link_frames, pose
 from ._common import AXIS_COLOURS, DASHES, JOINT_NAMES, PALETTE, as_list, slider
+from ._common import MAX_POINTS, check_count
 from .layout import finish_layout
 # still importable from here, where they lived before scara.plots.layout (the figure rules of tests/ use them)
 
@@ -255,11 +256,13 @@ def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
 def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 400) -> go.Figure:
     """``det J_A`` (numerical determinant of :func:`jacobian`) and ``w = |det J_A|`` against ``theta2`` over
     [-180°, 180°], with the singular configurations (stretched, folded) marked. ``theta1`` in rad; ``n``
-    samples (>= 3)."""
+    samples (>= 3).
+
+    Limits: ``n`` from 3 to 10 000 samples (``MAX_POINTS``); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work."""
+    n = check_count(n, "n", MAX_POINTS, minimum=3, what="samples")
     p = _params(p)
-    if int(n) < 3:
-        raise ScaraError(f"n = {n} samples is too few (need >= 3)")
-    t2 = np.linspace(-180.0, 180.0, int(n))
+    t2 = np.linspace(-180.0, 180.0, n)
     det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
     fig = go.Figure()
     fig.add_trace(go.Scatter(x=as_list(t2, 2), y=as_list(det, 5), mode="lines", name="det J_A",

@@ -21,6 +21,7 @@ from ..errors import ScaraError, as_array, as_vector, check_positive
 from ..kinematics import _params, ikine
 from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, as_list, slider
+from ._common import MAX_GRID, MAX_POINTS, MAX_SWEEP, MAX_TARGETS, check_count
 from .kinematics import _circle, top_axes, top_view_arm
 from .layout import finish_layout
 
@@ -55,7 +56,11 @@ def ellipse_xy(ellipsoid, scale: float = 1.0, n: int = 181) -> np.ndarray:
     Semi-axes longer than ``_CLIP`` m after scaling (an unbounded force ellipse at a singularity, ``inf``) are
     capped at ``_CLIP``: within any view of the arm the result is the strip the true, unbounded ellipse
     draws. Raises :class:`ScaraError` for a scale that is not positive.
+
+    Limits: ``n`` from 3 to 10 000 samples (``MAX_POINTS``); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work.
     """
+    n = check_count(n, "n", MAX_POINTS, minimum=3, what="samples")
     scale = check_positive(scale, "scale")
     lengths = np.minimum(np.asarray(ellipsoid.lengths, dtype=float) * scale, _CLIP)
     clipped = dataclasses.replace(ellipsoid, lengths=lengths)
@@ -101,11 +106,16 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
 
 def workspace_points(radii=(0.3, 0.55, 0.8), n_angles: int = 8, height: float = 0.5) -> np.ndarray:
     """End-effector targets ``(len(radii) * n_angles, 4)`` spread over the workspace: rings of radius
-    ``radii`` (m), ``n_angles`` per ring (rings staggered by half a step), at height ``height``, phi = 0."""
+    ``radii`` (m), ``n_angles`` per ring (rings staggered by half a step), at height ``height``, phi = 0.
+
+    Limits: ``n_angles`` from 1, and at most 200 targets in all (``MAX_TARGETS``, ``len(radii) * n_angles``); more,
+    or a count that is not a whole number, raises :class:`ScaraError` before any work."""
     radii = as_array(radii, "radii", (len(np.atleast_1d(radii)),))
+    n_angles = check_count(n_angles, "n_angles", MAX_TARGETS, minimum=1, what="targets per ring")
+    check_count(len(radii) * n_angles, "len(radii) * n_angles", MAX_TARGETS, minimum=1, what="targets")
     pts = []
     for k, r in enumerate(radii):
-        for j in range(int(n_angles)):
+        for j in range(n_angles):
             a = 2 * math.pi * (j + 0.5 * (k % 2)) / n_angles
             pts.append([r * math.cos(a), r * math.sin(a), height, 0.0])
     return np.array(pts)
@@ -170,13 +180,15 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
     """Static (kernel-free) figure: the arms (elbow ``elbow``, top view) reaching many end-effector positions
     over the workspace, with a two-step slider that shows their velocity ellipses (first step) or their force
     ellipses. ``points`` (N, 4) targets ``[p_x, p_y, p_z, phi]``, by default :func:`workspace_points`
-    (24 positions). Raises :class:`UnreachableError` for a target outside the workspace.
+    (24 positions). Raises :class:`UnreachableError` for a target outside the workspace, and
+    :class:`ScaraError` for more than 200 targets (``MAX_TARGETS``), before any work.
 
     Trace 1 holds the ellipses of the step shown (named ``"velocity ellipses"`` or ``"force ellipses"``).
     """
     p = _params(p)
     pts = workspace_points() if points is None else as_array(points, "points", (4,), allow_batch=True)
     pts = np.atleast_2d(pts)
+    check_count(len(pts), "the number of points", MAX_TARGETS, minimum=1, what="targets")
     qs = np.atleast_2d(ikine(pts, p, elbow=elbow))
     ax, ay = [], []
     for q in qs:
@@ -221,13 +233,15 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
 def manipulability_map_figure(p=None, n: int = 101, height: int = 520) -> go.Figure:
     """Heat map of ``w`` (m²) over the horizontal workspace (:func:`scara.workspace_map`), with the circles
     where ``w = 0`` (stretched ``r = a1 + a2``; folded ``r = |a1 - a2|``, a single point when ``a1 = a2``)
-    and the circle of largest ``w`` (``theta2 = ±90°``, ``r = sqrt(a1² + a2²)``). ``n`` grid points per side
-    (>= 3, else :class:`ScaraError`). Viridis runs from dark to light, so the map reads in greyscale.
+    and the circle of largest ``w`` (``theta2 = ±90°``, ``r = sqrt(a1² + a2²)``). ``n`` grid points per side,
+    from 3 to 301 (``MAX_GRID``: 90 601 cells); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work. Viridis runs from dark to light, so the map reads in greyscale.
 
     >>> fig = manipulability_map_figure(n=41)
     >>> fig.data[0].type
     'heatmap'
     """
+    n = check_count(n, "n", MAX_GRID, minimum=3, what="grid points per side")
     p = _params(p)
     xs, ys, W = workspace_map(p, n)
     r_in, r_out = singular_radii(p)
@@ -261,12 +275,14 @@ def duality_figure(q, p=None, n: int = 181, height: int = 440) -> go.Figure:
     """The two ellipses are dual: the semi-axis lengths ``sigma_1, sigma_2`` of the velocity ellipse and
     ``1/sigma_1, 1/sigma_2`` of the force ellipse against ``theta2`` (degrees, the other joints as in ``q``)
     on a log scale, mirror images of each other because each product is 1, with the values at ``q`` marked.
-    ``n`` samples of theta2 over [-179°, 179°] (>= 3, else :class:`ScaraError`)."""
+    ``n`` samples of theta2 over [-179°, 179°] (>= 3, else :class:`ScaraError`).
+
+    Limits: ``n`` from 3 to 2001 samples (``MAX_SWEEP``); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work."""
+    n = check_count(n, "n", MAX_SWEEP, minimum=3, what="samples")
     p = _params(p)
     q = as_vector(q, "q")
-    if int(n) < 3:
-        raise ScaraError(f"n = {n} samples is too few (need >= 3)")
-    t2 = np.linspace(-179.0, 179.0, int(n))
+    t2 = np.linspace(-179.0, 179.0, n)
     sig = np.array([velocity_ellipsoid([q[0], math.radians(v), q[2], q[3]], p, rows=(0, 1)).lengths for v in t2])
     fig = go.Figure()
     styles = (("velocity", "σ1 (velocity)", "solid", 0, False), ("velocity", "σ2 (velocity)", "dash", 1, False),

@@ -12,9 +12,10 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..errors import ScaraError
+from ..errors import ScaraError, as_array
 from ..trajectory import Trajectory, Trapezoidal, plan_path
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, check_count
 from .kinematics import top_view_arm
 from .layout import finish_layout, stacked_axes
 
@@ -55,13 +56,17 @@ def _check(traj):
 
 def decimate(traj: Trajectory, points: int = 2000, lo: float | None = None, hi: float | None = None) -> np.ndarray:
     """Indices of about ``points`` samples of ``traj`` in ``[lo, hi]`` (s), evenly spaced, plus every segment
-    start and end inside the window (so corners and stops are drawn where they are)."""
+    start and end inside the window (so corners and stops are drawn where they are).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     t = traj.t
     k0 = 0 if lo is None else int(np.searchsorted(t, lo))
     k1 = t.size - 1 if hi is None else int(np.searchsorted(t, hi, side="right")) - 1
     if k1 <= k0:
         raise ScaraError(f"the window [{lo}, {hi}] s holds no samples of the trajectory (0 to {t[-1]:g} s)")
-    base = np.linspace(k0, k1, max(2, int(points))).round().astype(int)
+    base = np.linspace(k0, k1, points).round().astype(int)
     marks = np.round(np.r_[traj.segment_start, traj.segment_end] / traj.dt).astype(int)
     marks = marks[(marks >= k0) & (marks <= k1)]
     return np.unique(np.r_[base, marks])
@@ -69,7 +74,11 @@ def decimate(traj: Trajectory, points: int = 2000, lo: float | None = None, hi: 
 
 def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = None, height: int = 520) -> go.Figure:
     """The trapezoidal timing law of one segment: ``s``, ``sdot`` and ``sddot`` against the time since its start,
-    the two blends shaded (the law of Siciliano et al., eq. 4.8, with ``t_f`` its duration)."""
+    the two blends shaded (the law of Siciliano et al., eq. 4.8, with ``t_f`` its duration).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     if not isinstance(law, Trapezoidal):
         raise ScaraError(f"expected a Trapezoidal timing law, got {type(law).__name__}")
     T, tc = law.duration, law.blend
@@ -115,7 +124,11 @@ def _waypoint_traces(traj, dims=3, showlegend=True, text=True):
 
 
 def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 520) -> go.Figure:
-    """The planned path in 3-D (base frame, m), its half circle highlighted, stop and via points labelled."""
+    """The planned path in 3-D (base frame, m), its half circle highlighted, stop and via points labelled.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     k = decimate(traj, points)
     x = traj.x[k]
@@ -138,7 +151,11 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
 
 def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
     """The data :func:`top_view_figure` draws: the path's ``x``, ``y`` (decimated to about ``points``) and the
-    stop and via points (``x``, ``y``, labels), so that a live panel can redraw an edited path from these."""
+    stop and via points (``x``, ``y``, labels), so that a live panel can redraw an edited path from these.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     k = decimate(traj, points)
     wp = [dict(x=t.x, y=t.y, text=t.text, hovertext=t.hovertext) for t in _waypoint_traces(traj, 2)]
@@ -147,7 +164,11 @@ def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
 
 def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, title: str | None = None,
                     height: int = 460) -> go.Figure:
-    """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration."""
+    """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     series = top_view_series(traj, points)
     fig = go.Figure()
@@ -183,7 +204,11 @@ def segment_shapes(traj, lo=None, hi=None):
 
 def profiles_series(traj: Trajectory, points: int = 2000) -> list:
     """The ``(t, y)`` arrays of :func:`profiles_figure`'s traces, in order: ``p_x, p_y, p_z`` of the position,
-    then of the velocity, then of the acceleration, then ``phi`` (degrees)."""
+    then of the velocity, then of the acceleration, then ``phi`` (degrees).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     k = decimate(traj, points)
     t = _r(traj.t[k], 4)
@@ -193,7 +218,11 @@ def profiles_series(traj: Trajectory, points: int = 2000) -> list:
 
 def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 560) -> go.Figure:
     """Position, velocity and acceleration of x, y, z against time, and phi, with the segments shaded
-    (grey: every other segment; orange: overlaps at via points, where two segments move at once)."""
+    (grey: every other segment; orange: overlaps at via points, where two segments move at once).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     series = profiles_series(traj, points)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
@@ -248,7 +277,11 @@ def corner_figure(with_via: Trajectory, without: Trajectory, index: int, margin:
                   points: int = 400, title: str | None = None, height: int = 540) -> go.Figure:
     """A via point's corner seen from above (top) and the speed around it (bottom), for the trajectory that
     anticipates the next segment (``with_via``, black and solid like the reference) and one that stops there
-    (``without``, grey and dashed)."""
+    (``without``, grey and dashed).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     _check(with_via), _check(without)
     lab = with_via.labels[index]
     fig = _corner_grid()
@@ -275,10 +308,20 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
     keyword arguments of :func:`plan_path` (e.g. :func:`~scara.trajectory.reference_plan()`); the other
     waypoints are unchanged. At 0 the arm stops at the point (grey, dashed, always shown); the distance by
     which the corner is cut grows with the anticipation. Raises :class:`ScaraError` for fewer than 2 or more
-    than 25 values."""
-    values = np.arange(0.0, 3.01, 0.25) if values is None else np.asarray(values, dtype=float)
+    than 25 values.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), and at most 100 000 samples per curve
+    in all the steps together (values × ``points``, ``MAX_SLIDER_SAMPLES``); a value outside, or not a whole
+    number, raises :class:`ScaraError` before any work (each value re-plans the path)."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    if values is None:
+        values = np.arange(0.0, 3.01, 0.25)
+    else:
+        values = as_array(values, "values", (len(np.atleast_1d(values)),))
     if values.size < 2 or values.size > 25:
         raise ScaraError(f"give between 2 and 25 anticipation values, got {values.size}")
+    check_count(values.size * points, f"{values.size} values × points {points}", MAX_SLIDER_SAMPLES,
+                what="samples per curve in all the slider steps")
     wps = list(plan["waypoints"])
     lab = wps[index].label or f"p{index}"
     trajs = []
@@ -327,7 +370,11 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
 def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: str | None = None,
                           height: int = 560) -> go.Figure:
     """The joint motion the path implies (closed-form inverse kinematics with the trajectory's elbow) and the
-    manipulability ``w = a1 a2 |sin θ2|`` met along it, its minimum marked."""
+    manipulability ``w = a1 a2 |sin θ2|`` met along it, its minimum marked.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     q = traj.joints(p)
     w = traj.manipulability(p)

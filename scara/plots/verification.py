@@ -6,6 +6,7 @@ import numpy as np
 import plotly.graph_objects as go
 
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, slider, thin
+from ._common import MAX_POINTS, check_count
 from .layout import finish_layout
 
 __all__ = ["IMPLEMENTATION_COLOURS", "PER_CALL_TASKS", "RUN_TASKS", "speed_figure", "rotor_coupling_figure"]
@@ -98,7 +99,11 @@ def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, he
 
     ``t`` (N,) s; ``coupling_torque`` and ``torque`` (N, 4) (N m, N for the quill). One trace per joint,
     decimated to about ``max_points`` samples; the legend gives each joint's largest share of its torque.
+
+    Limits: ``max_points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole
+    number, raises :class:`ScaraError` before any work.
     """
+    max_points = check_count(max_points, "max_points", MAX_POINTS, minimum=2, what="samples per curve")
     t = np.asarray(t)
     d = np.asarray(coupling_torque)
     tau = np.asarray(torque)

@@ -60,7 +60,7 @@ from __future__ import annotations
 from .controllers import PD_GAINS, TORQUE_GAINS, PDGravityController, TorqueController, pd_gravity_law, torque_law
 from .engine import closed_loop_kernel, simulate
 from .interface import (
-    DIVERGED, LAW_FAILED, LAW_SIGNATURE, OK, SINGULAR_INERTIA, Controller, _compiled_law, control_law,
+    DIVERGED, JOINT_LIMIT, LAW_FAILED, LAW_SIGNATURE, OK, SINGULAR_INERTIA, Controller, _compiled_law, control_law,
 )
 from .plant import PlantConstants, _plant_acceleration, _plant_constants, _rk4_step
 from .reference import (

@@ -10,7 +10,7 @@ from ..errors import as_array
 from ..gains import gain_vector
 from ..kinematics import _params
 from ..params import ScaraParams
-from .interface import OK, Controller, control_law
+from .interface import OK, Controller, _finite_result, control_law
 
 __all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "PD_GAINS", "TORQUE_GAINS"]
 
@@ -82,7 +82,10 @@ class PDGravityController(Controller):
         ``(m3_hat - m3) g0 / K_P3`` (m), shape (4,)."""
         plant = _params(plant)
         e = np.zeros(4)
-        e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf
+        with np.errstate(over="ignore", invalid="ignore"):
+            e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf
+        if self.K_P[2] > 0:  # K_P3 = 0 leaves the quill uncorrected: an infinite error, on purpose
+            _finite_result(e, "the steady-state error", f"K_P3 = {self.K_P[2]:g}, payload m_L = {plant.m_L:g} kg")
         return e
 
     def __repr__(self):

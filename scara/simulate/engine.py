@@ -13,7 +13,7 @@ from ..dynamics import dynamic_array
 from ..errors import ScaraError, UnstableError, check_positive
 from ..kinematics import _params
 from ..params import ScaraParams
-from .interface import _LAW_TYPE, DIVERGED, LAW_FAILED, OK, SINGULAR_INERTIA, _compiled_law
+from .interface import _LAW_TYPE, DIVERGED, JOINT_LIMIT, LAW_FAILED, OK, SINGULAR_INERTIA, _compiled_law, _count
 from .plant import _plant_acceleration, _plant_constants, _rk4_step
 from .reference import _references, _start_state
 from .result import SimulationResult, _pose_error
@@ -24,15 +24,21 @@ __all__ = ["closed_loop_kernel", "simulate"]
 LawData = namedtuple("LawData", ("gains", "model", "state", "work"))
 #: What the loop records, one row per sample: ``q, qd, qdd, tau`` (N, 4) and the law's signals (N, n_sig).
 Series = namedtuple("Series", ("q", "qd", "qdd", "tau", "signals"))
-#: The run's settings: sampling period (s), RK4 steps per period, and the bound on any state or torque entry.
-Stepping = namedtuple("Stepping", ("dt", "substeps", "limit"))
+#: The run's settings: sampling period (s), RK4 steps per period, the bound on any state or torque entry, and
+#: the quill's stroke as its middle and half-length (m): ``d3`` must keep ``|d3 - d3_mid| <= d3_half``.
+Stepping = namedtuple("Stepping", ("dt", "substeps", "limit", "d3_mid", "d3_half"))
+
+#: The largest number of RK4 steps per sampling period: at 1 ms that is a step of 1 us, far below any time
+#: constant of the arm (the fastest, the quill's friction, is about 1 s; the controllers' poles are near
+#: 20-30 rad/s), so more steps only cost time (a 70 s run would take minutes).
+MAX_SUBSTEPS = 1000
 
 if _compile.COMPILED:
     from numba import types as _t
 
     _v = _t.float64[::1]
     _m = _t.float64[:, ::1]
-    _STEPPING = _t.NamedTuple((_t.float64, _t.int64, _t.float64), Stepping)
+    _STEPPING = _t.NamedTuple((_t.float64, _t.int64, _t.float64, _t.float64, _t.float64), Stepping)
     _LOOP_SIGNATURE = _t.void(_LAW_TYPE, _t.UniTuple(_v, 2), _m, _STEPPING, _v,
                               _t.NamedTuple((_v, _v, _v, _m), LawData), _t.NamedUniTuple(_m, 5, Series), _t.int64[::1])
 else:  # pragma: no cover - plain Python
@@ -46,14 +52,16 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     ``start = (q0, qd0)``; ``stepping`` a :data:`Stepping`; ``plant_dp`` the plant's
     :func:`~scara.dynamics.dynamic_array`; ``data`` the law's :data:`LawData`. Writes the :data:`Series`
     ``out``. ``info`` (3,) int64 receives ``[code, k, law_code]``: :data:`OK` when all samples ran, otherwise
-    :data:`LAW_FAILED`, :data:`DIVERGED` (a state not finite or above ``limit``) or :data:`SINGULAR_INERTIA`,
-    at sample ``k``.
+    :data:`LAW_FAILED`, :data:`DIVERGED` (a state not finite or above ``limit``), :data:`SINGULAR_INERTIA` or
+    :data:`JOINT_LIMIT` (``d3`` left its stroke; that state is written in row ``k`` of ``out.q``, ``out.qd``),
+    at sample ``k``. Only ``d3`` has limits: one comparison per step checks it.
 
     The law is called with small buffers owned by the loop (the measured state, the reference row, zeroed
     ``signals`` and ``tau``), copied to and from the output rows: no array view is created per sample.
     """
     q0, qd0 = start
     dt, substeps, limit = stepping.dt, stepping.substeps, stepping.limit
+    d3_mid, d3_half = stepping.d3_mid, stepping.d3_half
     gains, model, state, work = data.gains, data.model, data.state, data.work
     q_out, qd_out, qdd_out, tau_out, sig_out = out.q, out.qd, out.qdd, out.tau, out.signals
     n = ref.shape[0]
@@ -129,6 +137,13 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
             info[0] = DIVERGED
             info[1] = k + 1
             return
+        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
+            for i in range(4):
+                q_out[k + 1, i] = q[i]
+                qd_out[k + 1, i] = qd[i]
+            info[0] = JOINT_LIMIT
+            info[1] = k + 1
+            return
 
 
 def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float | None = None, *,
@@ -143,25 +158,34 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
         ``duration`` (open loop) is given.
     plant : the true robot, default ``ScaraParams()`` (pass ``ScaraParams().with_payload(5.0)`` for
         the control chapter).
-    dt : sampling period (s); default ``traj.dt`` or 1e-3. Must match ``traj.dt`` when both are given.
+    dt : sampling period (s); default ``traj.dt`` or 1e-3. Must match ``traj.dt`` when both are given, and the
+        spacing of ``traj.t`` (and of ``joint_reference.t`` when it has one), which must be uniform. A joint
+        reference array carries no time: its rows are taken at ``dt``.
     joint_reference : (N, 12) ``[q_d, qd_d, qdd_d]``, a ``(q, qd, qdd)`` tuple or an object with
         ``q, qd, qdd`` (a ``clik2`` result). Default for joint controllers: ``clik2(traj)``.
     q0, qd0 : initial state; default the reference's first sample (joint controllers) or the inverse
         kinematics of ``x_d(0)`` with ``elbow`` (operational controllers); ``qd0`` default zero / reference.
-    substeps : RK4 steps per sampling period (the torque is held over all of them).
-    duration : length (s) of an open-loop run (``reference_kind == "none"``) without trajectory.
+    substeps : RK4 steps per sampling period (the torque is held over all of them), a whole number from 1 to
+        :data:`MAX_SUBSTEPS` (1000).
+    duration : length (s) of an open-loop run (``reference_kind == "none"``) without trajectory: a whole number
+        of periods ``dt``. A run has at most :data:`~scara.simulate.interface.MAX_SAMPLES` samples.
     limit : a state or torque entry above this magnitude stops the run with :class:`~scara.UnstableError`.
+
+    The start state must have ``d3`` within the quill's stroke ``[plant.d3_min, plant.d3_max]``
+    (:class:`~scara.UnreachableError` otherwise), and a run in which ``d3`` leaves it stops with an
+    :class:`~scara.UnstableError` naming joint 3, the time and the value: the plant models no end stop.
 
     Returns :class:`SimulationResult`. Raises :class:`~scara.ScaraError` for inconsistent inputs and
     :class:`~scara.UnstableError` (with the time and cause) when the run diverges.
     """
     plant = _params(plant)
     kind, dt, substeps = _check_run(controller, traj, dt, substeps)
+    limit = check_positive(limit, "limit")
     ref, jref, x_d, xop, n = _references(kind, traj, joint_reference, duration, dt, plant)
     q0, qd0 = _start_state(q0, qd0, jref, xop, traj, plant, elbow)
     out, state, info, elapsed = _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit)
     if info[0] != OK:
-        _raise_failure(controller, info, dt, limit)
+        _raise_failure(controller, info, dt, limit, out, plant)
     q_out, qd_out, qdd_out, tau_out, x, e, sig_out = out
     _pose_error(q_out, q_out if x_d is None else np.ascontiguousarray(x_d), plant.a1, plant.a2, plant.d0, x, e)
     if x_d is None:
@@ -180,8 +204,8 @@ def _check_run(controller, traj, dt, substeps):
     """The checked ``(reference_kind, dt, substeps)`` of a run (see :func:`simulate`)."""
     if not hasattr(controller, "law") or controller.law is None:
         raise ScaraError(f"controller {controller!r} has no compiled law: see scara.simulate's interface")
-    if isinstance(substeps, bool) or int(substeps) != substeps or substeps < 1:
-        raise ScaraError(f"substeps = {substeps!r} must be a whole number >= 1")
+    substeps = _count(substeps, "substeps", 1, MAX_SUBSTEPS, "1000 RK4 steps per period are already a step of "
+                      "1 us at 1 ms, far below the arm's time constants")
     kind = controller.reference_kind
     if kind not in ("joint", "operational", "none"):
         raise ScaraError(f"reference_kind = {kind!r}; expected 'joint', 'operational' or 'none'")
@@ -191,7 +215,7 @@ def _check_run(controller, traj, dt, substeps):
     dt = check_positive(dt, "dt")
     if tdt is not None and abs(tdt - dt) > 1e-12 * dt:
         raise ScaraError(f"dt = {dt} differs from the trajectory's sampling period {tdt}; resample the trajectory")
-    return kind, dt, int(substeps)
+    return kind, dt, substeps
 
 
 def _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit):
@@ -211,15 +235,24 @@ def _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit):
     law = _compiled_law(controller.law)  # compile (or load) the law and the loop before the clock starts
     loop = _compile.dispatcher_of(closed_loop_kernel)
     t0 = time.perf_counter()
-    loop(law, (q0, qd0), ref, Stepping(float(dt), int(substeps), float(limit)), dynamic_array(plant),
+    stepping = Stepping(float(dt), int(substeps), float(limit), 0.5 * (plant.d3_min + plant.d3_max),
+                        0.5 * (plant.d3_max - plant.d3_min))
+    loop(law, (q0, qd0), ref, stepping, dynamic_array(plant),
          LawData(gains, model, state, work), Series(q_out, qd_out, qdd_out, tau_out, sig_out), info)
     elapsed = time.perf_counter() - t0
     return (q_out, qd_out, qdd_out, tau_out, x, e, sig_out), state, info, elapsed
 
 
-def _raise_failure(controller, info, dt, limit):
+def _raise_failure(controller, info, dt, limit, out, plant):
     """The :class:`~scara.UnstableError` of a run the loop stopped (``info = [code, k, law_code]``)."""
     k = int(info[1])
+    if int(info[0]) == JOINT_LIMIT:
+        d3, v3 = float(out[0][k, 2]), float(out[1][k, 2])
+        end = "d3_max" if d3 > plant.d3_max else "d3_min"
+        raise UnstableError(f"the run of {getattr(controller, 'name', controller)} left the joint range at "
+                            f"t = {k * dt:.4f} s (sample {k}): joint 3 (d3) = {d3:.6g} m (at {v3:.3g} m/s) is past "
+                            f"{end} of the quill's stroke [{plant.d3_min:g}, {plant.d3_max:g}] m; the engine models "
+                            f"no end stop")
     code = int(info[2])
     explain = getattr(controller, "explain", None)  # a controller may name the cause behind its codes
     law_cause = f"the controller's law returned code {code}" + (f": {explain(code)}" if explain else "")

@@ -7,9 +7,10 @@ import warnings
 import numpy as np
 
 from .._compile import kernel
-from ..errors import ScaraError, ShapeError, as_array, check_positive
+from ..errors import ScaraError, ShapeError, UnreachableError, as_array
 from ..kinematics import _params, ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel
 from ..params import ScaraParams
+from .interface import MAX_SAMPLES, _sample_count
 
 __all__ = ["ikine_reference", "joint_setpoint"]
 
@@ -21,9 +22,10 @@ def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.n
     unreachable sample and :class:`~scara.ScaraError` at a singular configuration.
     """
     p = _params(p)
-    x = as_array(traj.x, "traj.x", (4,), allow_batch=True)
-    xd = as_array(traj.xd, "traj.xd", (4,), allow_batch=True)
-    xdd = as_array(traj.xdd, "traj.xdd", (4,), allow_batch=True)
+    x, xd, xdd = (as_array(_traj_field(traj, f), f"traj.{f}", (4,), allow_batch=True) for f in ("x", "xd", "xdd"))
+    if not (x.ndim == 2 and x.shape == xd.shape == xdd.shape):
+        raise ShapeError(f"traj.x, traj.xd, traj.xdd must all have shape (N, 4), got {x.shape}, {xd.shape}, "
+                         f"{xdd.shape}")
     q = ikine(x, p, elbow=elbow)
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 3] = x[:, 3] - q[:, 0] - q[:, 1]
@@ -41,6 +43,14 @@ def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.n
     return np.hstack([q, qd, qdd])
 
 
+def _traj_field(traj, name):
+    """``traj.<name>``, or :class:`~scara.ScaraError` naming what a trajectory must have."""
+    if not hasattr(traj, name):
+        raise ScaraError(f"traj = {type(traj).__name__} has no attribute {name!r}: a trajectory needs t, x, xd, xdd "
+                         f"(N, 4) and dt (see scara.plan_path)")
+    return getattr(traj, name)
+
+
 @kernel
 def _jacobian_rows(q, a1, a2, out):
     """``out[k] = J_A(q[k])`` for every row of ``q`` (N, 4); ``out`` (N, 4, 4)."""
@@ -56,9 +66,14 @@ def _jacobian_dot_rows(q, qd, a1, a2, out):
 
 
 def joint_setpoint(q_d, duration: float, dt: float = 1e-3) -> np.ndarray:
-    """A constant joint reference ``[q_d, 0, 0]`` of ``round(duration / dt) + 1`` samples, shape (N, 12)."""
+    """A constant joint reference ``[q_d, 0, 0]`` of ``duration / dt + 1`` samples, shape (N, 12).
+
+    ``duration`` must be a whole number of periods ``dt`` (``joint_setpoint(q, 1.0, dt=0.3)`` raises
+    :class:`~scara.ScaraError` naming 0.9 s and 1.2 s rather than giving 0.9 s), with at most
+    :data:`~scara.simulate.interface.MAX_SAMPLES` samples. Like any joint reference array it carries no time:
+    :func:`scara.simulate` takes its rows at its own ``dt``, so pass the same ``dt`` to both."""
     q_d = as_array(q_d, "q_d", (4,))
-    n = int(round(check_positive(duration, "duration") / check_positive(dt, "dt"))) + 1
+    n = _sample_count(duration, dt) + 1
     ref = np.zeros((n, 12))
     ref[:, :4] = q_d
     return ref
@@ -120,13 +135,45 @@ def _operational_from_joint(ref, p):
     return out
 
 
+def _check_time_base(obj, name, dt):
+    """Check that the samples of ``obj`` (a trajectory, or a joint reference object such as a ``clik2`` result)
+    are the run's samples: its ``t`` (when it has one; an array carries no time and is taken at ``dt``) must be
+    uniform with spacing ``dt`` (within 1e-6 of a period). Raises :class:`~scara.ScaraError` naming both
+    spacings."""
+    t = getattr(obj, "t", None)
+    if t is None or isinstance(obj, (np.ndarray, tuple, list)):
+        return
+    try:
+        t = np.asarray(t, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ShapeError(f"{name}.t must be a vector of sample times (s), got {t!r}") from exc
+    if t.ndim != 1:
+        raise ShapeError(f"{name}.t must be a vector of sample times (N,), got shape {t.shape}")
+    t = as_array(t, f"{name}.t", (len(t),))
+    if len(t) < 2:
+        return
+    step = np.diff(t)
+    lo, hi = float(step.min()), float(step.max())
+    tol = 1e-6 * dt
+    if hi - lo > tol:
+        k = int(np.argmax(np.abs(step - step[0]) > tol))
+        raise ScaraError(f"{name}.t is not uniform: its spacing ranges from {lo:g} s to {hi:g} s (first change at "
+                         f"sample {k}); the engine samples every dt = {dt:g} s: resample the reference")
+    if abs(lo - dt) > tol:
+        raise ScaraError(f"{name}.t is sampled every {lo:g} s but the run's dt = {dt:g} s; pass dt={lo:g} (or give "
+                         f"the reference a matching dt attribute) or resample it")
+
+
 def _references(kind, traj, joint_reference, duration, dt, p):
     """The references of a run of a controller of ``reference_kind`` ``kind`` (see :func:`scara.simulate`):
     ``(ref, jref, x_d, xop, n)`` with ``ref`` (n, 12) what the law receives, ``jref`` the joint reference (or
     None), ``x_d`` (n, 4) the desired pose (or None for an open-loop run), ``xop`` the operational reference
     (or None) and ``n`` the number of samples."""
     jref = None
+    if traj is not None:
+        _check_time_base(traj, "traj", dt)
     if joint_reference is not None:
+        _check_time_base(joint_reference, "joint_reference", dt)
         jref = np.ascontiguousarray(_joint_reference_array(joint_reference))
     elif kind == "joint":
         if traj is None:
@@ -135,22 +182,29 @@ def _references(kind, traj, joint_reference, duration, dt, p):
     x_d = None
     xop = None
     if traj is not None:
-        x_d = as_array(traj.x, "traj.x", (4,), allow_batch=True)
+        x_d = as_array(_traj_field(traj, "x"), "traj.x", (4,), allow_batch=True)
+        if x_d.ndim != 2:
+            raise ShapeError(f"traj.x must have shape (N, 4), got {x_d.shape}")
         n = len(x_d)
         if kind == "operational" or jref is None:
             xop = np.empty((n, 12))
             xop[:, 0:4] = x_d
-            xop[:, 4:8] = as_array(traj.xd, "traj.xd", (4,), allow_batch=True)
-            xop[:, 8:12] = as_array(traj.xdd, "traj.xdd", (4,), allow_batch=True)
+            for i, f in ((1, "xd"), (2, "xdd")):
+                v = as_array(_traj_field(traj, f), f"traj.{f}", (4,), allow_batch=True)
+                if v.shape != x_d.shape:
+                    raise ShapeError(f"traj.{f} must have the shape of traj.x {x_d.shape}, got {v.shape}")
+                xop[:, 4 * i:4 * i + 4] = v
     elif jref is not None:
         # the operational reference realised by the joint reference (x_d for the error e)
         xop = _operational_from_joint(jref, p) if kind == "operational" else None
         x_d = pose(jref[:, :4], p)
         n = len(jref)
     elif duration is not None:
-        n = int(round(check_positive(duration, "duration") / dt)) + 1
+        n = _sample_count(duration, dt) + 1
     else:
         raise ScaraError("give traj, joint_reference or (for an open-loop run) duration")
+    if n > MAX_SAMPLES:
+        raise ScaraError(f"the reference has {n} samples, past the limit of {MAX_SAMPLES} samples per run")
     if jref is not None and len(jref) != n:
         raise ShapeError(f"joint_reference has {len(jref)} samples but the trajectory has {n}")
     if kind == "joint":
@@ -175,12 +229,26 @@ def _start_state(q0, qd0, jref, xop, traj, p, elbow):
         else:
             raise ScaraError("an open-loop run without reference needs q0")
     q0 = np.ascontiguousarray(as_array(q0, "q0", (4,)), dtype=float).copy()
+    if not p.d3_min <= q0[2] <= p.d3_max:
+        raise UnreachableError(f"q0: joint 3 (d3) = {q0[2]:g} m is outside the quill's stroke [{p.d3_min:g}, "
+                               f"{p.d3_max:g}] m")
     if qd0 is None:
         if jref is not None:
             qd0 = jref[0, 4:8]
         elif xop is not None:
-            qd0 = np.linalg.solve(jacobian(q0, p), xop[0, 4:8])
+            qd0 = _start_velocity(q0, xop[0, 4:8], p)
         else:
             qd0 = np.zeros(4)
     qd0 = np.ascontiguousarray(as_array(qd0, "qd0", (4,)), dtype=float).copy()
     return q0, qd0
+
+
+def _start_velocity(q0, xd0, p):
+    """``qd0 = J_A(q0)^-1 xd0``: the joint speeds that give the reference's first operational velocity; refused
+    at (or numerically at) a singular configuration, where no such speeds exist."""
+    J = jacobian(q0, p)
+    if np.linalg.cond(J) > 1e12:
+        raise ScaraError(f"q0 = {np.round(q0, 6).tolist()} is a singular configuration (theta2 = "
+                         f"{q0[1]:.6g} rad; det J_A = a1 a2 sin theta2 vanishes): the start speeds cannot be found "
+                         "from the reference's velocity; give qd0, or start away from theta2 = 0 and pi")
+    return np.linalg.solve(J, xd0)

@@ -8,7 +8,7 @@ import numpy as np
 
 from .._compile import kernel
 from ..dynamics import kinetic_energy, potential_energy
-from ..errors import ScaraError
+from ..errors import ScaraError, check_positive
 from ..kinematics import pose_kernel
 from ..params import ScaraParams
 
@@ -82,13 +82,21 @@ class SimulationResult:
         w_in = np.concatenate([[0.0], np.cumsum(np.einsum("ij,ij->i", self.tau[:-1], dq))])
         power = np.einsum("ij,j,ij->i", self.qd, self.plant.F, self.qd)
         w_f = cumulative_simpson(power, x=self.t, initial=0.0) if len(self.t) > 2 else np.zeros_like(power)
-        return dict(kinetic=T, potential=U, total=E, input_work=w_in, friction_work=w_f,
-                    balance=E - E[0] - w_in + w_f)
+        out = dict(kinetic=T, potential=U, total=E, input_work=w_in, friction_work=w_f,
+                   balance=E - E[0] - w_in + w_f)
+        for name, v in out.items():
+            if not np.all(np.isfinite(v)):
+                k = int(np.argmax(~np.isfinite(v)))
+                raise ScaraError(f"the {name} energy is not finite at t = {self.t[k]:g} s: the plant (payload "
+                                 f"m_L = {self.plant.m_L:g} kg) or the state (|qd| up to {np.abs(self.qd).max():g}) "
+                                 f"is too large for floating point")
+        return out
 
     def summary(self, window: float = 2.0) -> dict:
         """Figures for a chapter's table: per component of ``e = x_d - x`` (m, m, m, rad) its maximum
         absolute value, RMS, and steady-state value (mean over the last ``window`` seconds); the largest
-        absolute torques; and the run's time."""
+        absolute torques; and the run's time. ``window`` (s) must be finite and ``> 0``."""
+        window = check_positive(window, "window")
         last = self.t >= self.t[-1] - window + 1e-12
         return {
             "controller": self.controller,

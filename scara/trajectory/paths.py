@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..errors import ScaraError, as_array
+from ..errors import NonFiniteError, ScaraError, as_array, check_positive
 
 __all__ = ["Line", "Arc"]
 
@@ -52,8 +52,12 @@ class Line:
     def __init__(self, start, end):
         self.start = _point(start, "start")
         self.end = _point(end, "end")
-        d = self.end - self.start
-        self.length = float(np.linalg.norm(d))
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = self.end - self.start
+            self.length = float(np.linalg.norm(d))
+        if not np.isfinite(self.length):
+            raise NonFiniteError(f"the line from start = {_fmt(self.start)} to end = {_fmt(self.end)} has a length "
+                                 f"that overflows; the points must be finite and reasonably sized (m)")
         if self.length <= GEOMETRY_TOL:
             raise ScaraError(f"a line needs two distinct points, but start = end = {_fmt(self.start)} "
                              f"(a repeated point: |end - start| = {self.length:.3g} m <= {GEOMETRY_TOL:g} m)")
@@ -127,8 +131,12 @@ class Arc:
                 raise ScaraError(f"the arc's {name} {_fmt(pt)} is not on its circle: it lies {off:.3g} m off the "
                                  f"plane through the centre {_fmt(self.centre)} normal to {_fmt(self.normal)} "
                                  f"(tolerance {GEOMETRY_TOL:g} m)")
-        rho0, rho1 = float(np.linalg.norm(r0)), float(np.linalg.norm(r1))
-        rho = rho0 if radius is None else float(radius)
+        with np.errstate(over="ignore", invalid="ignore"):
+            rho0, rho1 = float(np.linalg.norm(r0)), float(np.linalg.norm(r1))
+        if not (math.isfinite(rho0) and math.isfinite(rho1)):
+            raise NonFiniteError(f"the arc from start {_fmt(self.start)} to end {_fmt(self.end)} about the centre "
+                                 f"{_fmt(self.centre)} has a radius that overflows; the points must be reasonably sized (m)")
+        rho = rho0 if radius is None else check_positive(radius, "radius")
         if not np.isfinite(rho) or rho <= GEOMETRY_TOL:
             raise ScaraError(f"an arc needs a positive radius, got {rho:.3g} m (start {_fmt(self.start)}, "
                              f"centre {_fmt(self.centre)})")
@@ -160,10 +168,14 @@ class Arc:
         ([0.23, 0.2, 0.5], 0.05, [0.0, 0.0, 1.0])
         """
         a, b, c = _point(start, "start"), _point(via, "via"), _point(end, "end")
-        ab, ac = b - a, c - a
-        n = np.cross(ab, ac)
-        nn2 = float(n @ n)
-        scale = float(np.linalg.norm(ab) * np.linalg.norm(ac))
+        with np.errstate(over="ignore", invalid="ignore"):
+            ab, ac = b - a, c - a
+            n = np.cross(ab, ac)
+            nn2 = float(n @ n)
+            scale = float(np.linalg.norm(ab) * np.linalg.norm(ac))
+        if not (math.isfinite(nn2) and math.isfinite(scale)):
+            raise NonFiniteError(f"the circle through start {_fmt(a)}, via {_fmt(b)} and end {_fmt(c)} cannot be "
+                                 f"computed: the points are too far apart and the arithmetic overflows")
         if min(np.linalg.norm(ab), np.linalg.norm(ac), np.linalg.norm(c - b)) <= GEOMETRY_TOL or nn2 <= (1e-12 * scale) ** 2:
             raise ScaraError(f"no circle passes through start {_fmt(a)}, via {_fmt(b)} and end {_fmt(c)}: "
                              f"the points are collinear or two of them coincide")

@@ -22,13 +22,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_positive
+from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_positive
 from ..kinematics import _params, check_reachable, ikine, is_reachable
 from ..manipulability import manipulability
 from .paths import GEOMETRY_TOL, Arc, Line, _fmt
-from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal
+from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, times
 
-__all__ = ["Waypoint", "Trajectory", "plan_path", "start_orientation"]
+__all__ = ["Waypoint", "Trajectory", "plan_path", "start_orientation", "MAX_SAMPLES"]
+
+#: largest number of samples of a planned trajectory (``total / dt + 1``), checked before any work: each sample
+#: holds ``t``, ``x``, ``xd``, ``xdd`` (104 bytes), so the limit caps a plan at about 200 MB; the reference
+#: scenario has 70 001 samples at 1 ms
+MAX_SAMPLES = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -52,15 +57,22 @@ class Waypoint:
     def __post_init__(self):
         pos = as_array(self.position, "waypoint position", (3,))
         object.__setattr__(self, "position", tuple(float(v) for v in pos))
+        if isinstance(self.anticipation, (bool, np.bool_, str, bytes)) or np.ndim(self.anticipation) != 0:
+            raise ScaraError(f"anticipation must be a number of seconds, got {self.anticipation!r}")
         try:
             a = float(self.anticipation)
-        except (TypeError, ValueError) as exc:
+        except (TypeError, ValueError, OverflowError) as exc:
             raise ScaraError(f"anticipation must be a number of seconds, got {self.anticipation!r}") from exc
         if not np.isfinite(a) or a < 0:
             raise ScaraError(f"anticipation = {a} s must be finite and >= 0 (0 makes a stop point)")
         object.__setattr__(self, "anticipation", a)
         if self.phi is not None:
-            ph = float(self.phi)
+            if isinstance(self.phi, (bool, np.bool_, str, bytes)) or np.ndim(self.phi) != 0:
+                raise ScaraError(f"phi at a waypoint must be a number of radians, got {self.phi!r}")
+            try:
+                ph = float(self.phi)
+            except (TypeError, ValueError, OverflowError) as exc:
+                raise ScaraError(f"phi at a waypoint must be a number of radians, got {self.phi!r}") from exc
             if not np.isfinite(ph):
                 raise ScaraError(f"phi = {ph} at a waypoint must be finite")
             object.__setattr__(self, "phi", ph)
@@ -87,7 +99,12 @@ def start_orientation(point, p=None, elbow: int = -1) -> float:
 
 
 def _samples(value: float, dt: float, what: str) -> int:
-    n = round(value / dt)
+    with np.errstate(over="ignore"):
+        periods = float(value) / float(dt)
+    if not periods <= MAX_SAMPLES:
+        raise ScaraError(f"{what} = {value:g} s is {periods:.4g} sampling periods dt = {dt:g} s, more than a plan "
+                         f"may hold (MAX_SAMPLES = {MAX_SAMPLES:g} samples); use a longer dt or a shorter plan")
+    n = round(periods)
     if abs(value / dt - n) > 1e-6:
         raise ScaraError(f"{what} = {value:g} s is not a whole number of sampling periods dt = {dt:g} s "
                          f"({value / dt:.6g} periods); use a multiple of dt so that stop points fall on samples")
@@ -126,9 +143,10 @@ class Trajectory:
     def evaluate(self, t):
         """``x, xd, xdd`` (each (n, 4)) at arbitrary times ``t`` (n,) in s, by eq. 4.56 of the module docstring.
 
-        Before 0 the arm is at the first waypoint; after the last segment it rests at the last one.
+        Before 0 the arm is at the first waypoint; after the last segment it rests at the last one. A NaN or
+        infinite time raises :class:`~scara.NonFiniteError`.
         """
-        t = np.asarray(t, dtype=float).reshape(-1)
+        t = times(t, "t").reshape(-1)
         if t.size > 1 and np.any(np.diff(t) < 0):
             order = np.argsort(t, kind="stable")
             xs = self.evaluate(t[order])
@@ -181,6 +199,7 @@ class Trajectory:
     # -- queries -------------------------------------------------------------------------------------
     def segments_at(self, time: float) -> list[int]:
         """Indices of the segments moving at ``time`` (two during a via point's overlap, none at rest)."""
+        time = float(times(time, "time"))
         return [j for j in range(len(self.segments)) if self.segment_start[j] <= time < self.segment_end[j]]
 
     def _segment_names(self, time: float) -> str:
@@ -352,6 +371,7 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
     ((3001,), (3001, 4), 0.5)
     """
     dt = check_positive(dt, "dt")
+    check = check_flag(check, "check")
     wps, labels, seg_labels, pos = _waypoints(waypoints)
     nT = _segment_samples(durations, seg_labels, dt)
     T = nT * dt  # the durations the samples realise (equal to the inputs up to rounding)
@@ -409,10 +429,14 @@ def _segment_samples(durations, seg_labels, dt):
 def _blend_times(blends, T):
     """The blend time ``t_c`` of each segment's trapezoid (default a third of its duration)."""
     m = len(T)
+    if blends is not None and (isinstance(blends, (str, bytes, dict)) or np.ndim(blends) != 1):
+        raise ShapeError(f"blends must be a sequence with one blend time (s, or None) per segment ({m}), "
+                         f"got {blends!r}")
     blends = [None] * m if blends is None else list(blends)
     if len(blends) != m:
         raise ShapeError(f"blends must have one entry per segment ({m}), got {len(blends)}")
-    tc = np.array([DEFAULT_BLEND_FRACTION * T[j] if b is None else float(b) for j, b in enumerate(blends)])
+    tc = np.array([DEFAULT_BLEND_FRACTION * T[j] if b is None else check_positive(b, f"blends[{j}]")
+                   for j, b in enumerate(blends)])
     return blends, tc
 
 
@@ -439,6 +463,8 @@ def _anticipation_samples(wps, seg_labels, T, dt):
 def _segments(pos, arcs, labels, seg_labels):
     """The geometric path of each segment: a :class:`Line`, or an :class:`Arc` where ``arcs`` asks for one."""
     m = len(seg_labels)
+    if arcs is not None and not isinstance(arcs, dict):
+        raise ScaraError(f"arcs must be a dict {{segment index: point (3,) or Arc}}, got {arcs!r}")
     arcs = dict(arcs or {})
     for key in arcs:
         if not (isinstance(key, (int, np.integer)) and 0 <= key < m):
@@ -482,8 +508,11 @@ def _timing_laws(segments, T, tc, seg_labels):
 def _orientations(wps, pos, phi, p, elbow):
     """The orientation at every waypoint: its own ``phi`` if it has one, else the one before it; the first is
     the waypoint's, or ``phi``, or the start configuration's."""
-    if phi is not None and not np.isfinite(float(phi)):
-        raise ScaraError(f"phi = {float(phi)} must be finite")
+    if phi is not None:
+        if not isinstance(phi, (int, float, np.integer, np.floating)) or isinstance(phi, (bool, np.bool_)):
+            raise ScaraError(f"phi = {phi!r} must be a number of radians")
+        if not np.isfinite(float(phi)):
+            raise ScaraError(f"phi = {float(phi)} must be finite")
     if wps[0].phi is not None:
         phi0 = wps[0].phi
     else:
@@ -503,10 +532,16 @@ def _schedule(nT, nA, total, dt):
         k0[j] = k0[j - 1] + nT[j - 1] - nA[j]
     k1 = k0 + nT
     k_end = int(k1.max())
+    if k_end + 1 > MAX_SAMPLES:
+        raise ScaraError(f"the motion lasts {k_end * dt:g} s, {k_end + 1} samples at dt = {dt:g} s, more than a plan "
+                         f"may hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter plan")
     if total is None:
         return k0, k1, k_end, k_end
     total_f = check_positive(total, "total")
     k_total = _samples(total_f, dt, "total")
+    if k_total + 1 > MAX_SAMPLES:
+        raise ScaraError(f"total = {total_f:g} s is {k_total + 1} samples at dt = {dt:g} s, more than a plan may hold "
+                         f"(MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter total")
     if k_total < k_end:
         raise ScaraError(f"total = {total_f:g} s is shorter than the motion, which ends at {k_end * dt:g} s")
     return k0, k1, k_end, k_total

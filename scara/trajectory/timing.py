@@ -21,9 +21,33 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ScaraError, check_positive
+from ..errors import NonFiniteError, ScaraError, ShapeError, check_positive
 
-__all__ = ["Trapezoidal", "trapezoidal", "DEFAULT_BLEND_FRACTION"]
+__all__ = ["Trapezoidal", "trapezoidal", "DEFAULT_BLEND_FRACTION", "MAX_SEGMENT_SAMPLES", "times"]
+
+#: largest number of sampling periods ``T / dt`` of one profile (:meth:`Trapezoidal.minimum_time`): a
+#: trajectory is stored sample by sample, and the planner allows at most ``MAX_SAMPLES`` of them in all
+MAX_SEGMENT_SAMPLES = 2_000_000
+
+
+def times(tau, name: str = "tau") -> np.ndarray:
+    """``tau`` as a float array of times (s) of any shape, every entry finite: a NaN or infinite time has no
+    place on the profile and is refused (:class:`~scara.NonFiniteError`) rather than read as "before the
+    start" or "after the end"."""
+    try:
+        raw = np.asarray(tau)
+        if isinstance(tau, (str, bytes)) or raw.dtype.kind not in "iuf":
+            raise TypeError("not numbers")
+        arr = raw.astype(float)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise ShapeError(f"{name} must be a time or an array of times (s), got {tau!r}") from exc
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        where = f"{name}[{idx[0] if len(idx) == 1 else idx}]" if idx else name
+        raise NonFiniteError(f"{where} = {arr[idx]} is not a finite time; every time must be a finite number of "
+                             f"seconds")
+    return arr
 
 #: blend time as a fraction of the duration when none is given (cruise speed 1.5 L / T)
 DEFAULT_BLEND_FRACTION = 1.0 / 3.0
@@ -61,6 +85,10 @@ class Trapezoidal:
         object.__setattr__(self, "length", L)
         object.__setattr__(self, "duration", T)
         object.__setattr__(self, "blend", min(tc, T / 2))
+        if not (math.isfinite(self.cruise_speed) and math.isfinite(self.acceleration)):
+            raise ScaraError(f"length = {L:g} m over duration = {T:g} s with blend = {self.blend:g} s needs a speed "
+                             f"{self.cruise_speed:g} m/s and an acceleration {self.acceleration:g} m/s^2 that are not "
+                             f"finite: the length is too large for the duration")
 
     @property
     def cruise_speed(self) -> float:
@@ -95,6 +123,10 @@ class Trapezoidal:
             T = 2.0 * tc
         if dt is not None:
             dt = check_positive(dt, "dt")
+            if not T / dt <= MAX_SEGMENT_SAMPLES:
+                raise ScaraError(f"dt = {dt:g} s is too short for this profile: its duration {T:g} s would take "
+                                 f"{T / dt:.4g} sampling periods, more than MAX_SEGMENT_SAMPLES = "
+                                 f"{MAX_SEGMENT_SAMPLES:g}")
             n = math.ceil(T / dt - 1e-9)
             T = n * dt
             tc = T / 2 - math.sqrt(max(T * T / 4 - L / a, 0.0))
@@ -103,9 +135,10 @@ class Trapezoidal:
     def evaluate(self, tau):
         """``s, sdot, sddot`` at times ``tau`` (s since the segment's start; scalar or array of any shape).
 
-        Before the start the values are ``0, 0, 0``; after the end ``L, 0, 0``.
+        Before the start the values are ``0, 0, 0``; after the end ``L, 0, 0``. A NaN or infinite time raises
+        :class:`~scara.NonFiniteError`.
         """
-        tau = np.asarray(tau, dtype=float)
+        tau = times(tau)
         L, T, tc = self.length, self.duration, self.blend
         v = self.cruise_speed
         a = self.acceleration
@@ -122,8 +155,9 @@ class Trapezoidal:
 
     def evaluate_sorted(self, tau):
         """:meth:`evaluate` for a sorted 1-D array ``tau`` within ``[0, T)``: the phases are contiguous
-        slices, filled without masks (the fast path of trajectory sampling)."""
-        tau = np.asarray(tau, dtype=float)
+        slices, filled without masks (the fast path of trajectory sampling). A NaN or infinite time raises
+        :class:`~scara.NonFiniteError`."""
+        tau = times(tau)
         T, tc = self.duration, self.blend
         v, a = self.cruise_speed, self.acceleration
         ia = int(np.searchsorted(tau, tc, side="left"))

@@ -20,6 +20,7 @@ import base64
 import html
 import json
 import math
+import numbers
 import re
 import time
 from contextlib import contextmanager
@@ -31,10 +32,11 @@ import plotly.graph_objects as go
 from plotly.basedatatypes import Undefined
 from IPython.display import display
 
-from ..errors import ScaraError
+from ..errors import NonFiniteError, ScaraError
 from ..plots.layout import without_template
 
-__all__ = ["LivePanel", "PanelView", "table", "readable", "start_value", "angle_slider", "LABEL_STYLE", "STALE_TITLE"]
+__all__ = ["LivePanel", "PanelView", "table", "readable", "number", "start_value", "angle_slider", "stroke_slider",
+           "trajectory_arg", "LABEL_STYLE", "STALE_TITLE"]
 
 #: the style of every control: its description shown in full, not cut to a fixed width
 LABEL_STYLE = {"description_width": "initial"}
@@ -166,6 +168,16 @@ def _merge(old: dict, part: dict) -> dict:
     if "title" in part:
         layout["title"] = dict(layout.get("title") or {}, text=part["title"])
     return {"data": data, "layout": layout}
+
+
+def _detached(value):
+    """``value`` with its dicts copied at every depth, lists of dicts (shapes, annotations) included; lists of
+    numbers and arrays, never edited in place, are shared."""
+    if isinstance(value, dict):
+        return {k: _detached(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)) and value and isinstance(value[0], dict):
+        return type(value)(_detached(v) for v in value)
+    return value
 
 
 def _structure(state: dict) -> list:
@@ -330,8 +342,10 @@ class LivePanel:
             # data that came from validated figures: plotly's validators walk every element of every list
             changed = [i for i, d in enumerate(deltas) if d]
             props = sorted({key for i in changed for key in deltas[i]})
-            restyle = {key: [deltas[i].get(key, Undefined) for i in changed] for key in props}
-            fw.plotly_update(restyle_data=restyle, relayout_data=layout, trace_indexes=changed)
+            restyle = {key: [_detached(deltas[i].get(key, Undefined)) for i in changed] for key in props}
+            # plotly keeps what it is sent and later edits it in place (a refusal sets ``layout.title.text``):
+            # send copies of the nested dicts, so that the panel's record of the figure stays its own
+            fw.plotly_update(restyle_data=restyle, relayout_data=_detached(layout), trace_indexes=changed)
             self.redraws += 1
         self._states[k] = new
 
@@ -356,21 +370,51 @@ class LivePanel:
         display(self.widget)
 
 
-def start_value(value, lo: float, hi: float, name: str, unit: str = "") -> float:
-    """A control's starting value, checked against the control's range ``[lo, hi]``: a value outside it
-    raises (a panel never silently clamps what it was given)."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ScaraError(f"{name} must be a number, got {value!r}") from exc
-    if not (lo <= v <= hi):
-        u = f" {unit}" if unit else ""
-        raise ScaraError(f"{name} = {v:g}{u} is outside the panel's range {lo:g} to {hi:g}{u}")
+def number(value, name: str, unit: str = "") -> float:
+    """``value`` as a float, if it is a real number (an ``int``, a ``float``, a numpy scalar), else
+    :class:`ScaraError` naming it: a string, a bool, a list or an array is refused, never converted."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        u = f" (in {unit})" if unit else ""
+        raise ScaraError(f"{name} must be a number{u}, got {type(value).__name__} {value!r:.80}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise NonFiniteError(f"{name} = {v} is not finite")
     return v
+
+
+def start_value(value, lo: float, hi: float, name: str, unit: str = "", limit: str = "the panel's range") -> float:
+    """A control's starting value, checked against the control's range ``[lo, hi]``: a value outside it, or
+    one that is not a number (:func:`number`), raises :class:`ScaraError` naming the value and the range
+    (``limit`` says what the range is; a panel never silently clamps what it was given)."""
+    v = number(value, name, unit)
+    if not (lo <= v <= hi):
+        u = unit if unit == "°" else (f" {unit}" if unit else "")
+        raise ScaraError(f"{name} = {v:g}{u} is outside {limit} {lo:g} to {hi:g}{u}")
+    return v
+
+
+def trajectory_arg(traj, p):
+    """``traj`` (a :class:`~scara.trajectory.Trajectory`), or the 70 s reference of chapter 3 when it is None;
+    anything else raises :class:`ScaraError`."""
+    from ..trajectory import Trajectory, reference_trajectory  # noqa: PLC0415 - built on demand
+
+    if traj is None:
+        return reference_trajectory(p=p)
+    if not isinstance(traj, Trajectory):
+        raise ScaraError(f"traj must be a Trajectory (from plan_path or reference_trajectory) or None, "
+                         f"got {type(traj).__name__} {traj!r:.80}")
+    return traj
+
+
+def stroke_slider(d3: float, p):
+    """A slider over the quill's stroke ``p.d3_min`` to ``p.d3_max`` (m) starting at ``d3``, which must lie in it."""
+    v = start_value(d3, p.d3_min, p.d3_max, "d3", "m", limit="the quill's stroke d3_min to d3_max =")
+    return ipw.FloatSlider(value=v, min=p.d3_min, max=p.d3_max, step=0.01, description="d3 (m)",
+                           continuous_update=False, style=LABEL_STYLE)
 
 
 def angle_slider(value_rad: float, name: str, desc: str):
     """A slider in degrees over [-180°, 180°] starting at ``value_rad`` (rad), checked by :func:`start_value`."""
-    v = start_value(math.degrees(value_rad), -180.0, 180.0, name, "°")
+    v = start_value(math.degrees(number(value_rad, name, "rad")), -180.0, 180.0, name, "°")
     return ipw.FloatSlider(value=v, min=-180.0, max=180.0, step=1.0, description=desc, continuous_update=False,
                            style=LABEL_STYLE)

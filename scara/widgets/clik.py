@@ -11,9 +11,9 @@ from plotly.subplots import make_subplots
 
 from ..clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
 from ..kinematics import _params
-from ..plots._common import envelope, run_colour, run_label, thin
+from ..plots._common import MAX_POINTS, check_count, envelope, run_colour, run_label, thin
 from ..plots.layout import finish_layout, stacked_axes
-from ._common import LABEL_STYLE, LivePanel, PanelView, readable, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, readable, table, trajectory_arg
 
 __all__ = ["clik_panel"]
 
@@ -27,12 +27,13 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara.clik.clik` (or
     ``clik2``) on ``traj`` (default: the 70 s reference of chapter 3) and redraws the position error (log),
     the orientation error and the manipulability, with the summary figures and the run time listed. Settings
-    the package refuses (a gain past a stability limit, a run that diverges) are reported in the panel."""
-    p = _params(p)
-    if traj is None:
-        from ..trajectory import reference_trajectory  # noqa: PLC0415 - built on demand
+    the package refuses (a gain past a stability limit, a run that diverges) are reported in the panel.
 
-        traj = reference_trajectory(p=p)
+    ``points`` (samples per curve) runs from 2 to 10 000 (``scara.plots._common.MAX_POINTS``); outside, or not a
+    whole number, or ``traj`` not a Trajectory, raises :class:`ScaraError` before any run."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    p = _params(p)
+    traj = trajectory_arg(traj, p)
     gain = dict(base=10, min=0.0, max=math.log10(2500.0), step=0.01, continuous_update=False, readout_format=".0f",
                 style=LABEL_STYLE)
     controls = {

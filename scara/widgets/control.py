@@ -10,9 +10,9 @@ import numpy as np
 
 from ..control import AdaptiveController, OperationalSpaceController, RobustController, control_summary
 from ..kinematics import _params
-from ..plots._common import run_colour, run_label
+from ..plots._common import MAX_POINTS, check_count, run_colour, run_label
 from ..plots.control import tuning_figure, tuning_series, tuning_signal, tuning_title
-from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value
+from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value, trajectory_arg
 
 __all__ = ["control_panel"]
 
@@ -49,18 +49,21 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     Each change re-runs the 70 s reference (``traj``, default the reference of chapter 3; the joint reference of
     ``clik2`` is computed once) and redraws the error, the torques and the controller's own signal. Settings the
     package refuses (non-positive gains, ``Lambda >= K_D``, an unstable integral, a run that diverges or breaks a
-    bound) are reported in the panel with the time and cause."""
-    p = _params(p)
-    if traj is None:
-        from ..trajectory import reference_trajectory  # noqa: PLC0415
+    bound) are reported in the panel with the time and cause.
 
-        traj = reference_trajectory(p=p)
+    ``payload`` must lie in the slider's range 0 to 10 kg and ``points`` (samples per curve) from 2 to 10 000
+    (``scara.plots._common.MAX_POINTS``); outside, or not a number, or ``traj`` not a Trajectory, raises
+    :class:`ScaraError` before any run."""
+    payload = start_value(payload, 0.0, 10.0, "payload", "kg")
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    p = _params(p)
+    traj = trajectory_arg(traj, p)
     from ..clik import clik2  # noqa: PLC0415
 
     jref = clik2(traj, p=p)
     controls = {
         "controller": ipw.Dropdown(options=_CONTROLLERS, value="robust", description="controller", style=LABEL_STYLE),
-        "payload": ipw.FloatSlider(value=start_value(payload, 0.0, 10.0, "payload", "kg"), min=0.0, max=10.0,
+        "payload": ipw.FloatSlider(value=payload, min=0.0, max=10.0,
                                    step=0.5, description="true payload m_L (kg)", continuous_update=False,
                                    style=LABEL_STYLE),
         "K_P": _log(900.0, 10.0, 1e5, "K_P (1/s²)", ".0f"),

@@ -13,7 +13,7 @@ from ..errors import ScaraError, as_vector, check_positive
 from ..kinematics import _params
 from ..plots.dynamics import inertia_figure
 from ..simulate import PDGravityController
-from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, stroke_slider, table
 
 __all__ = ["dynamics_panel"]
 
@@ -34,8 +34,7 @@ def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: 
                                    step=0.5, description="payload m_L (kg)", continuous_update=False, style=LABEL_STYLE),
         "theta1": angle_slider(q[0], "theta1", "θ1 (°)"),
         "theta2": angle_slider(q[1], "theta2", "θ2 (°)"),
-        "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
-                              description="d3 (m)", continuous_update=False, style=LABEL_STYLE),
+        "d3": stroke_slider(q[2], p),
         "theta4": angle_slider(q[3], "theta4", "θ4 (°)"),
         "K_P3": ipw.FloatLogSlider(value=start_value(K_P3, 100.0, 1e6, "K_P3", "N/m"), base=10, min=2, max=6,
                                    step=0.1, description="K_P3 (N/m)", continuous_update=False, style=LABEL_STYLE),
@@ -46,10 +45,11 @@ def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: 
         qq = np.array([math.radians(theta1), math.radians(theta2), d3, math.radians(theta4)])
         ctrl = PDGravityController(K_P=(1.0, 1.0, check_positive(K_P3, "K_P3"), 1.0), model=p.with_payload(0.0))
         sag = -ctrl.steady_state_error(robot)[2]
-        if d3 + sag > p.d0:
+        if d3 + sag > p.d3_max:
             raise ScaraError(f"with K_P3 = {K_P3:.3g} N/m the {payload:g} kg payload would sag {sag * 1e3:.1f} mm "
                              f"under PD + gravity: the quill, at d3 = {d3:.2f} m, would need d3 = {d3 + sag:.3f} m, "
-                             f"past the end of its stroke (0 to {p.d0:g} m). Raise K_P3 or lighten the payload.")
+                             f"past the end of its stroke (d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m). "
+                             "Raise K_P3 or lighten the payload.")
         B = inertia(qq, robot)
         return dict(q=qq, robot=robot, payload=payload, theta2=theta2, K_P3=K_P3, B=B,
                     eig=np.linalg.eigvalsh(B), g=gravity(qq, robot), sag=sag)

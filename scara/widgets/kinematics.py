@@ -11,7 +11,7 @@ from ..errors import UnreachableError, as_vector
 from ..kinematics import _params, ikine, jacobian, pose
 from ..manipulability import manipulability
 from ..plots.kinematics import arm_figure, inverse_kinematics_figure
-from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
+from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, stroke_slider, table
 
 __all__ = ["kinematics_panel", "inverse_kinematics_panel"]
 
@@ -21,18 +21,18 @@ def kinematics_panel(q=None, p=None) -> LivePanel:
     """A slider per joint (theta1, theta2, theta4 in degrees, d3 in metres); on every move the 3-D arm with
     its frames is redrawn in place and ``x_e`` (1.6), ``det J_A`` and ``w`` are listed.
 
-    ``q`` is the starting configuration (4,) in rad, rad, m, rad (default ``[0, 60°, d0/2, 0]``); angles must lie
-    in [-180°, 180°] and d3 in the quill's stroke [0, d0], the sliders' ranges, or :class:`ScaraError` is raised.
+    ``q`` is the starting configuration (4,) in rad, rad, m, rad (default ``[0, 60°, mid-stroke, 0]``); angles must lie
+    in [-180°, 180°] and d3 in the quill's stroke ``p.d3_min`` to ``p.d3_max``, the sliders' ranges, or
+    :class:`ScaraError` is raised (naming the value and the range).
     Every slider position is a valid configuration, so this panel never refuses a setting.
     Returns a :class:`LivePanel` (display it as a cell's last expression).
     """
     p = _params(p)
-    q = np.array([0.0, math.radians(60.0), 0.5 * p.d0, 0.0]) if q is None else as_vector(q, "q")
+    q = np.array([0.0, math.radians(60.0), 0.5 * (p.d3_min + p.d3_max), 0.0]) if q is None else as_vector(q, "q")
     controls = {
         "theta1": angle_slider(q[0], "theta1", "θ1 (°)"),
         "theta2": angle_slider(q[1], "theta2", "θ2 (°)"),
-        "d3": ipw.FloatSlider(value=start_value(q[2], 0.0, p.d0, "d3", "m"), min=0.0, max=p.d0, step=0.01,
-                              description="d3 (m)", continuous_update=False, style=LABEL_STYLE),
+        "d3": stroke_slider(q[2], p),
         "theta4": angle_slider(q[3], "theta4", "θ4 (°)"),
     }
 
@@ -64,7 +64,7 @@ def _unreachable_text(target, p) -> str:
         return (f"{where} is out of reach: it lies r = {r:.4f} m from the joint-1 axis, and the arm reaches "
                 f"from |a1 − a2| = {p.r_min:g} m to a1 + a2 = {p.r_max:g} m.")
     return (f"{where} is out of reach: z = {target[2]:.3f} m needs the quill at d3 = d0 − z = "
-            f"{p.d0 - target[2]:.3f} m, outside its stroke 0 to {p.d0:g} m.")
+            f"{p.d0 - target[2]:.3f} m, outside its stroke d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m.")
 
 
 def inverse_kinematics_panel(x=None, p=None) -> LivePanel:

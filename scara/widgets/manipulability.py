@@ -43,7 +43,7 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
         if not scale > 0:
             raise ScaraError(f"the ellipse scale is {scale:g}: it must be above 0 to draw the ellipses "
                              "(metres drawn per m/s and per N)")
-        q = as_vector([math.radians(theta1), math.radians(theta2), 0.5 * p.d0, 0.0], "q")
+        q = as_vector([math.radians(theta1), math.radians(theta2), 0.5 * (p.d3_min + p.d3_max), 0.0], "q")
         v = velocity_ellipsoid(q, p, rows=(0, 1))
         singular = v.lengths[1] < _SINGULAR_RATIO * v.lengths[0]
         return dict(q=q, theta=(theta1, theta2), scale=scale, w=manipulability(q, p), v=v,

@@ -8,6 +8,7 @@ stale; the plan keeps its last valid state, so picking another waypoint or undoi
 from __future__ import annotations
 
 import ipywidgets as ipw
+import numpy as np
 import plotly.graph_objects as go
 
 from ..errors import ScaraError
@@ -23,6 +24,19 @@ _SELECTED = "#D55E00"
 TOP_POINTS, PROFILE_POINTS = 600, 500
 
 
+#: the arguments of :func:`~scara.trajectory.plan_path` a plan may hold
+_PLAN_KEYS = ("waypoints", "durations", "blends", "arcs", "phi", "total", "dt", "p", "elbow", "check")
+
+
+def _listed(value, name: str, what: str) -> list:
+    """``value`` (a list, tuple or 1-D array) as a list, or :class:`ScaraError` naming it."""
+    if isinstance(value, np.ndarray) and value.ndim >= 1:
+        return list(value)
+    if not isinstance(value, (list, tuple)):
+        raise ScaraError(f"{name} must be a list of {what}, got {type(value).__name__} {value!r:.80}")
+    return list(value)
+
+
 class WaypointEditor:
     """The editor's state (``plan``: keyword arguments of :func:`plan_path`) and its :class:`LivePanel`.
 
@@ -34,12 +48,34 @@ class WaypointEditor:
     """
 
     def __init__(self, plan: dict | None = None, profiles: bool = True):
+        if not isinstance(profiles, (bool, np.bool_)):
+            raise ScaraError(f"profiles must be True or False, got {type(profiles).__name__} {profiles!r:.80}")
+        if plan is not None and not isinstance(plan, dict):
+            raise ScaraError(f"plan must be a dict of the arguments of plan_path (as reference_plan() returns), "
+                             f"got {type(plan).__name__} {plan!r:.80}")
         plan = dict(reference_plan(), total=None) if plan is None else dict(plan)
         if "waypoints" not in plan or "durations" not in plan:
             raise ScaraError("a plan needs 'waypoints' and 'durations' (the arguments of plan_path)")
-        wps = [w if isinstance(w, Waypoint) else Waypoint(w) for w in plan["waypoints"]]
+        unknown = sorted(set(plan) - set(_PLAN_KEYS))
+        if unknown:
+            raise ScaraError(f"plan has unknown keys {unknown}: plan_path takes {', '.join(_PLAN_KEYS)}")
+        plan["waypoints"] = _listed(plan["waypoints"], "plan['waypoints']", "waypoints")
+        plan["durations"] = _listed(plan["durations"], "plan['durations']", "durations (s)")
+        wps = []
+        for i, w in enumerate(plan["waypoints"]):
+            try:
+                wps.append(w if isinstance(w, Waypoint) else Waypoint(w))
+            except ScaraError:
+                raise
+            except (TypeError, ValueError) as exc:
+                raise ScaraError(f"waypoint {i} = {w!r} is not a waypoint: give (x, y, z) in m or a Waypoint") from exc
         plan["waypoints"] = [w if w.label else w.replace(label=f"p{i}") for i, w in enumerate(wps)]
-        plan["durations"] = [float(d) for d in plan["durations"]]
+        durations = []
+        for j, d in enumerate(plan["durations"]):
+            if isinstance(d, (bool, str, bytes)) or not isinstance(d, (int, float, np.integer, np.floating)):
+                raise ScaraError(f"duration of segment {j} = {d!r} must be a number of seconds")
+            durations.append(float(d))
+        plan["durations"] = durations
         self.trajectory = plan_path(**plan)  # an invalid plan raises here, with the planner's message
         self.plan = plan
         self.profiles = profiles

@@ -338,6 +338,21 @@ class Lab:
     def figures(self, panel) -> list[dict]:
         return panel.evaluate(FIGURES)
 
+    def wait_drawn(self, panel, timeout: float = 30.0) -> None:
+        """Wait until every figure of ``panel`` has been drawn with its data (a FigureWidget draws when its
+        view is attached, which on a loaded machine may come after Run All has finished)."""
+        panel.evaluate("""(panel, timeout) => new Promise((resolve, reject) => {
+          const t0 = performance.now();
+          const tick = () => {
+            const plots = Array.from(panel.querySelectorAll('.js-plotly-plot'));
+            if (plots.length && plots.every(gd => (gd.data || []).length > 0 && gd._fullLayout)) return resolve(true);
+            if (performance.now() - t0 > timeout) return reject(new Error('the panel\'s figures were not drawn within '
+                                                                         + timeout / 1000 + ' s'));
+            setTimeout(tick, 50);
+          };
+          tick();
+        })""", timeout * 1000)
+
     def instrument(self) -> int:
         return self.page.evaluate(INSTRUMENT)
 

@@ -128,3 +128,43 @@ def test_each_method_and_controller_keeps_its_colour_and_dash(figures):
             assert (traces[0].line.dash or "solid") == CONTROLLER_DASHES[key], key
     dashes = [(t.line.dash or "solid") for t in norm.data if t.name in CONTROLLER_LABELS.values()]
     assert len(set(dashes)) == len(dashes) >= 4
+
+
+@pytest.mark.parametrize("build, args, count", [
+    ("clik_joints_figure", (None,), "points"), ("clik_error_figure", (None,), "points"),
+    ("error_components_figure", (None,), "points"), ("manipulability_figure", (None,), "points"),
+    ("drift_figure", (None,), "points"), ("damping_figure", ({},), "points"),
+    ("second_order_figure", (None,), "points"), ("gain_slider_figure", (None,), "points"),
+    ("joint_motion_figure", (None,), "points"), ("operational_error_figure", (None,), "points"),
+    ("error_norm_figure", (None,), "points"), ("torque_figure", (None,), "points"),
+    ("payload_estimate_figure", (None, 5.0), "points"), ("robust_term_figure", (None, 0.05), "points"),
+    ("tuning_figure", (None, {}), "points"),
+    ("torque_terms_figure", (None, {}), "target"), ("payload_torque_figure", (None, {}), "target"),
+    ("payload_slider_figure", (None, {}), "target"), ("energy_figure", (None, {}), "target"),
+    ("rotor_coupling_figure", (None, None, None), "max_points"),
+])
+@pytest.mark.parametrize("value, names", [
+    (10**6, ("= 1000000", "limit of 10000")),
+    (1, ("= 1", "the least is 2")),
+    (500.5, ("= 500.5", "whole number")),
+    ("500", ("= '500'", "whole number")),
+])
+def test_chapter456_figures_refuse_sample_counts_beyond_the_limit_before_any_work(build, args, count, value, names):
+    """The count is checked first: the (here absent) runs are never looked at."""
+    with pytest.raises(scara.ScaraError) as info:
+        getattr(plots, build)(*args, **{count: value})
+    assert str(info.value).startswith(f"{count} = ")
+    for text in names:
+        assert text in str(info.value)
+
+
+def test_slider_figures_refuse_more_steps_than_a_page_can_carry():
+    t = np.linspace(0.0, 1.0, 11)
+    many = {float(m): np.zeros((11, 4)) for m in range(200)}
+    with pytest.raises(scara.ScaraError, match=r"len\(torques_by_mass\) = 200 asks for more .* limit of 121"):
+        plots.payload_slider_figure(t, many)
+    some = {float(m): np.zeros((11, 4)) for m in range(50)}
+    with pytest.raises(scara.ScaraError, match=r"50 masses × target 5000 = 250000 asks for more .* limit of 100000"):
+        plots.payload_slider_figure(t, some, target=5000)
+    with pytest.raises(scara.ScaraError, match=r"runs must be a non-empty dict"):
+        plots.boundary_layer_slider_figure({}, 1.0)

@@ -332,6 +332,9 @@ def test_live_panels(chapter, lab_url, browser, record):
             assert outside == 0, f"{chapter}: a figure shown outside panel {k}"
             assert panels.nth(k).locator(".js-plotly-plot").count() >= 1, f"{chapter}: panel {k} shows no figure"
         ref = _ref() if chapter in ("04_clik.ipynb", "06_control.ipynb") else None
+        for k in range(len(wanted_panels)):  # every figure drawn before the redraws are hooked and timed
+            panels.nth(k).scroll_into_view_if_needed()
+            lab.wait_drawn(panels.nth(k))
         lab.instrument()
         for k, wanted in enumerate(wanted_panels):
             panel = panels.nth(k)

@@ -510,3 +510,57 @@ def test_styles_survive_greyscale(figures):
     assert len({dash(t) for t in comps}) == 4
     joints = [t for t in figures["joints"].data if t.name in ("θ1", "θ2", "d3", "θ4")]
     assert len({dash(t) for t in joints}) == 4
+
+
+@pytest.mark.parametrize("build, kwargs, names", [
+    ("course_figure", dict(steps=10**6), ("steps = 1000000", "limit of 121")),
+    ("course_figure", dict(steps=0), ("steps = 0", "the least is 1")),
+    ("course_figure", dict(steps=2.5), ("steps = 2.5", "whole number", "1 to 121")),
+    ("course_figure", dict(steps="36"), ("steps = '36'", "whole number")),
+    ("course_figure", dict(points=10**7), ("points = 10000000", "limit of 10000")),
+    ("path_figure", dict(points=-5), ("points = -5", "the least is 2")),
+    ("top_view_figure", dict(points=True), ("points = True", "whole number")),
+    ("profiles_figure", dict(points=10**9), ("points = 1000000000", "limit of 10000")),
+    ("joint_profiles_figure", dict(points=20_001), ("points = 20001", "limit of 10000")),
+    ("anticipation_slider_figure", dict(points=10_000), ("13 values × points 10000", "limit of 100000")),
+])
+def test_chapter3_figures_refuse_counts_beyond_their_limits_before_any_work(traj, build, kwargs, names):
+    from scara import plots, reference_plan
+
+    first = reference_plan() if build == "anticipation_slider_figure" else traj
+    args = (first, 4) if build == "anticipation_slider_figure" else (first,)
+    with pytest.raises(ScaraError) as info:
+        getattr(plots, build)(*args, **kwargs)
+    for text in names:
+        assert text in str(info.value)
+
+
+@pytest.mark.parametrize("build, kwargs, names", [
+    (determinant_figure, dict(n=10**6), ("n = 1000000", "limit of 10000")),
+    (determinant_figure, dict(n=2), ("n = 2", "the least is 3")),
+    (duality_figure, dict(q=Q, n=10**5), ("n = 100000", "limit of 2001")),
+    (duality_figure, dict(q=Q, n=181.0), ("n = 181.0", "whole number")),
+    (manipulability_map_figure, dict(n=10**4), ("n = 10000", "limit of 301")),
+    (ellipse_xy, dict(ellipsoid=None, n=10**8), ("n = 100000000", "limit of 10000")),
+    (workspace_points, dict(n_angles=1000), ("n_angles = 1000", "limit of 200")),
+    (workspace_points, dict(n_angles=100), ("len(radii) * n_angles = 300", "limit of 200")),
+    (workspace_ellipses_figure, dict(points=np.tile([0.5, 0.2, 0.5, 0.0], (500, 1))),
+     ("the number of points = 500", "limit of 200")),
+])
+def test_chapter12_figures_refuse_counts_beyond_their_limits(build, kwargs, names):
+    with pytest.raises(ScaraError) as info:
+        build(**kwargs)
+    for text in names:
+        assert text in str(info.value)
+
+
+def test_course_figure_with_a_million_steps_is_refused_at_once(traj):
+    import time
+
+    from scara.plots import course_figure
+
+    t0 = time.perf_counter()
+    with pytest.raises(ScaraError, match=r"steps = 1000000 asks for more slider steps than the limit of 121"):
+        course_figure(traj, steps=10**6)
+    assert time.perf_counter() - t0 < 0.5
+    assert len(course_figure(traj, steps=121).layout.sliders[0].steps) == 121  # the limit itself is drawn

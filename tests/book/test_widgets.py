@@ -130,6 +130,55 @@ def test_waypoint_editor_opens_on_any_valid_plan(n):
     assert ed.panel.last_error is None
 
 
+@pytest.mark.parametrize("n", [2, 3])
+def test_waypoint_editor_recovers_after_a_refused_edit_on_a_short_reference_plan(n):
+    """A plan as ``reference_plan()`` returns it, cut to ``n`` waypoints: the editor opens, refuses an
+    unreachable move, and after moving back and picking another waypoint and segment every figure is current
+    (titles, traces shown, not greyed out), including after a second refusal."""
+    from scara import reference_plan
+
+    ref = reference_plan()
+    plan = dict(ref, waypoints=ref["waypoints"][:n], durations=ref["durations"][:n - 1], arcs={})
+    ed = waypoint_editor(plan)
+    c, panel = ed.panel.controls, ed.panel
+    assert len(c["segment"].options) == n - 1 and panel.last_error is None
+
+    def current():
+        assert panel.last_error is None and panel.message.value == ""
+        for fw, box in zip(panel.figures, panel._boxes):
+            assert fw.layout.title.text != STALE_TITLE
+            assert all(t.visible is not False for t in fw.data)
+            assert "scara-stale" not in box._dom_classes
+
+    for _ in range(2):  # twice: the second refusal must not leave a figure stuck stale
+        c["point"].value = n - 1
+        x0 = c["x"].value
+        c["x"].value = 0.99
+        assert panel.last_error and "unreachable" in panel.last_error
+        c["x"].value = x0
+        current()
+        c["x"].value = 0.99
+        c["point"].value = 0
+        c["segment"].value = n - 2
+        c["duration"].value = 3.0
+        current()
+        assert ed.trajectory.durations[n - 2] == 3.0
+        assert panel.figures[0].data[-1].name == "editing p0"
+
+
+@pytest.mark.parametrize("plan, text", [
+    ([1, 2], "plan must be a dict"),
+    (dict(waypoints=5, durations=[1.0]), "plan['waypoints'] must be a list"),
+    (dict(waypoints=[(0.3, 0.2, 0.5), (0.4, 0.2, 0.5)], durations="ab"), "plan['durations'] must be a list"),
+    (dict(waypoints=[(0.3, 0.2, 0.5), (0.4, 0.2, 0.5)], durations=["1"]), "duration of segment 0 = '1'"),
+    (dict(waypoints=[(0.3, 0.2, 0.5), (0.4, 0.2, 0.5)], durations=[1.0], speed=2), "unknown keys ['speed']"),
+])
+def test_waypoint_editor_refuses_a_malformed_plan_with_a_scara_error(plan, text):
+    with pytest.raises(ScaraError) as info:
+        waypoint_editor(plan)
+    assert text in str(info.value)
+
+
 def test_panels_never_clamp_their_start_values():
     with pytest.raises(ScaraError, match="d3 = 5"):
         kinematics_panel(q=[0.0, 0.0, 5.0, 0.0])
@@ -141,6 +190,77 @@ def test_panels_never_clamp_their_start_values():
         manipulability_panel(theta2=math.radians(400.0))
     with pytest.raises(ScaraError):
         inverse_kinematics_panel(x=[1.5, 0.0, 0.5, 0.0])
+
+
+@pytest.mark.parametrize("build, kwargs, names", [
+    (control_panel, dict(payload=-1.0), ("payload = -1 kg", "0 to 10 kg")),
+    (control_panel, dict(payload=1e6), ("payload = 1e+06 kg", "0 to 10 kg")),
+    (kinematics_panel, dict(q=[0.0, 0.0, 5.0, 0.0]), ("d3 = 5 m", "stroke d3_min to d3_max = 0 to 1 m")),
+    (dynamics_panel, dict(q=(0.0, 0.0, -0.1, 0.0)), ("d3 = -0.1 m", "stroke d3_min to d3_max = 0 to 1 m")),
+    (dynamics_panel, dict(payload=25.0), ("payload = 25 kg", "0 to 20 kg")),
+    (dynamics_panel, dict(K_P3=50.0), ("K_P3 = 50 N/m", "100 to 1e+06 N/m")),
+    (manipulability_panel, dict(scale=0.9), ("scale = 0.9", "0 to 0.5")),
+    (manipulability_panel, dict(theta1=math.radians(-200.0)), ("theta1 = -200°", "-180 to 180°")),
+])
+def test_panels_refuse_start_values_outside_their_sliders_range(build, kwargs, names):
+    with pytest.raises(ScaraError) as info:
+        build(**kwargs)
+    for text in names:
+        assert text in str(info.value)
+
+
+def test_panels_use_the_quills_stroke_from_the_params():
+    short = ScaraParams().replace(d3_min=0.1, d3_max=0.6)
+    panel = kinematics_panel(p=short)
+    d3 = panel.controls["d3"]
+    assert (d3.min, d3.max) == (0.1, 0.6) and d3.value == pytest.approx(0.35)
+    with pytest.raises(ScaraError, match=r"d3 = 0.8 m is outside the quill's stroke d3_min to d3_max = 0.1 to 0.6 m"):
+        kinematics_panel(q=[0.0, 0.0, 0.8, 0.0], p=short)
+    with pytest.raises(ScaraError, match=r"d3 = 0.05 m .* 0.1 to 0.6 m"):
+        dynamics_panel(q=(0.0, 0.0, 0.05, 0.0), p=short)
+
+
+@pytest.mark.parametrize("build, kwargs, names", [
+    (control_panel, dict(payload="5"), ("payload", "got str '5'")),
+    (control_panel, dict(payload=[5.0]), ("payload", "got list [5.0]")),
+    (control_panel, dict(traj="ref"), ("traj must be a Trajectory", "got str 'ref'")),
+    (dynamics_panel, dict(payload=True), ("payload", "got bool True")),
+    (dynamics_panel, dict(K_P3="1e4"), ("K_P3", "got str '1e4'")),
+    (manipulability_panel, dict(theta1="0"), ("theta1", "got str '0'")),
+    (manipulability_panel, dict(theta2=[1.0]), ("theta2", "got list [1.0]")),
+    (kinematics_panel, dict(q=[0.0, 0.0, 0.5]), ("q must have shape (4,)", "got (3,)")),
+    (kinematics_panel, dict(q="abcd"), ("q must be an array of numbers", "'abcd'")),
+    (inverse_kinematics_panel, dict(x=[0.3, 0.2]), ("x must have shape (4,)", "got (2,)")),
+    (clik_panel, dict(traj=[1, 2]), ("traj must be a Trajectory", "got list [1, 2]")),
+    (waypoint_editor, dict(profiles="yes"), ("profiles must be True or False", "got str 'yes'")),
+])
+def test_panels_refuse_start_values_of_the_wrong_type(build, kwargs, names):
+    with pytest.raises(ScaraError) as info:
+        build(**kwargs)
+    for text in names:
+        assert text in str(info.value)
+
+
+@pytest.mark.parametrize("build", [clik_panel, control_panel])
+@pytest.mark.parametrize("points, names", [
+    (10**6, ("points = 1000000", "limit of 10000")),
+    (0, ("points = 0", "the least is 2")),
+    (2.5, ("points = 2.5", "whole number", "2 to 10000")),
+])
+def test_panels_refuse_a_number_of_samples_beyond_the_limit_before_any_run(build, points, names):
+    calls = []
+    import scara.trajectory as st
+
+    original = st.reference_trajectory
+    st.reference_trajectory = lambda *a, **k: calls.append(1) or original(*a, **k)
+    try:
+        with pytest.raises(ScaraError) as info:
+            build(points=points)
+    finally:
+        st.reference_trajectory = original
+    for text in names:
+        assert text in str(info.value)
+    assert not calls  # refused before the 70 s reference was even built
 
 
 def test_messages_in_the_panels_units():
