@@ -22,7 +22,7 @@ def test_operational_integral_removes_the_steady_state_error(runs):
     assert final_n >= 100 * final_i
 
 
-def test_vertical_error_without_integral_matches_spec_formula(runs):
+def test_vertical_error_without_integral_matches_the_books_formula(runs):
     """Chapter 6: e_z = m_L g0 / (B33_hat K_P,z), B33_hat = m_l3 + k_r3^2 I_m3 (payload-free). Binding
     tolerance 5 %; the full prediction K_P^-1 J_A B_hat^-1 (g - g_hat) (which keeps the rotor coupling
     B13 = B23, 3e-4 relative) must hold to 1e-3: the rest window starts 2 s after the stop, when the transient

@@ -112,7 +112,7 @@ def _pvals(p):
     return (p.d0, p.a1, p.a2, p.l1, p.l2, p.m_l1, p.m_l2, p.m_l3, p.I_l1, p.I_l2, p.I_l4, *p.k_r, *p.I_m, p.m_L, p.g0)
 
 
-def spec_B(q, p):
+def chapter5_B(q, p):
     """Chapter 5's B, transcribed literally."""
     c2 = math.cos(q[1])
     kr, Im = p.k_r, p.I_m
@@ -162,7 +162,7 @@ def test_inertia_equals_symbolic_derivation(symbolic, q, qd, p):
     err = rel(B, np.array(Bs(q, qd, _pvals(p)), float))
     record("B vs sympy", err)
     assert err < 1e-12
-    err = rel(B, spec_B(q, p))
+    err = rel(B, chapter5_B(q, p))
     record("B vs chapter 5", err)
     assert err < 1e-12
 
@@ -181,7 +181,7 @@ def test_model_equals_symbolic_derivation_random_robots(symbolic, q, qd, p):
     errT = abs(kinetic_energy(q, qd, p) - float(Ts(q, qd, vals))) / max(1.0, abs(kinetic_energy(q, qd, p)))
     record("T vs sympy", errT)
     assert errT < 1e-12
-    assert rel(inertia(q, p), spec_B(q, p)) < 1e-12
+    assert rel(inertia(q, p), chapter5_B(q, p)) < 1e-12
 
 
 @given(configs, st.sampled_from([P0, P5]))
@@ -294,7 +294,7 @@ def test_pi_round_trip(p):
     assert rel(dynamic_parameters(back), dynamic_parameters(p)) < 1e-12
 
 
-def test_pi_round_trip_spec_robot_and_refusals():
+def test_pi_round_trip_of_the_books_robot_and_refusals():
     back = params_from_pi(dynamic_parameters(P5))  # k_r2 = 1: I_m2 taken from the base
     assert back.m_L == pytest.approx(5.0, abs=1e-12)
     assert rel(dynamic_parameters(back), dynamic_parameters(P5)) < 1e-13

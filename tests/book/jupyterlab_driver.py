@@ -346,7 +346,7 @@ class Lab:
           const tick = () => {
             const plots = Array.from(panel.querySelectorAll('.js-plotly-plot'));
             if (plots.length && plots.every(gd => (gd.data || []).length > 0 && gd._fullLayout)) return resolve(true);
-            if (performance.now() - t0 > timeout) return reject(new Error('the panel\'s figures were not drawn within '
+            if (performance.now() - t0 > timeout) return reject(new Error('the figures of the panel were not drawn within '
                                                                          + timeout / 1000 + ' s'));
             setTimeout(tick, 50);
           };
