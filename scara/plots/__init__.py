@@ -34,3 +34,5 @@ from .control import (
     tuning_figure,
 )
 from .course import course_figure
+from .frames import frames_figure
+from .animation import clik_animation, control_animation, course_animation, frame_indices, trajectory_animation

@@ -39,7 +39,7 @@ ELBOW_DASHES = {+1: "solid", -1: "dash"}
 _TRIAD_NAMES = ("x axes", "y axes", "z axes")
 
 
-def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
+def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
     """Points to draw the arm at ``q`` in the base frame.
 
     Returns a dict with
@@ -48,7 +48,8 @@ def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
     ``"triads"``: three arrays (3 * 7, 3), the x, y and z axes (length ``triad`` m) of the frames
     ``b, 0, 1, 2, 3, 4, e`` as segments separated by NaN rows;
     ``"origins"`` (7, 3) and ``"labels"``: the frame origins and names, coincident frames sharing one label
-    (frames 3, 4 and e share the end-effector origin).
+    (frames 3, 4 and e share the end-effector origin); ``"label_points"``: where those labels are drawn, each
+    moved off its origin and its triad, no two closer than 0.2 m.
 
     Raises :class:`ShapeError`/:class:`NonFiniteError` for a bad ``q``.
     """
@@ -74,7 +75,38 @@ def arm_geometry(q, p=None, triad: float = 0.15) -> dict:
         else:
             labels.append(name)
             label_pts.append(o)
-    return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels}
+    return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels,
+            "label_points": _label_points(np.array(label_pts), origins[2], p),
+            "label_positions": _label_positions(np.array(label_pts), p)}
+
+
+#: offsets (m) of the 3-D frame labels from their origins, to the right as the default camera of :func:`_scene`
+#: sees them and up (down at the gripper); labels closer than ``_LABEL_GAP`` are moved apart
+_LABEL_SIDE, _LABEL_UP, _LABEL_GAP = 0.07, 0.06, 0.2
+_CAMERA_EYE = (1.05, -1.35, 0.75)
+
+
+def _label_points(points, elbow, p):
+    """Where the 3-D frame labels go: each origin moved right (as the default camera sees the scene) by
+    ``_LABEL_SIDE`` and up by ``_LABEL_UP`` (down for the gripper, below the arm's plane), the text drawn on that
+    side of the point, so that a label sits beside its triad, not on it; a label that would still come within
+    ``_LABEL_GAP`` of an earlier one is lifted until it does not, so no two labels overlap."""
+    eye = np.array(_CAMERA_EYE)
+    right = np.cross(-eye, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    out = []
+    for o in points:
+        low = p.d0 - 1e-9 > o[2] > 1e-9
+        pt = o + _LABEL_SIDE * right + [0.0, 0.0, -_LABEL_UP if low else _LABEL_UP]
+        while any(np.linalg.norm(pt - other) < _LABEL_GAP for other in out):
+            pt[2] += 0.5 * _LABEL_GAP
+        out.append(pt)
+    return np.array(out)
+
+
+def _label_positions(points, p):
+    """plotly ``textposition`` of each label of :func:`_label_points`: above right, below right at the gripper."""
+    return ["bottom right" if p.d0 - 1e-9 > o[2] > 1e-9 else "top right" for o in points]
 
 
 def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
@@ -95,10 +127,11 @@ def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
             traces.append(go.Scatter3d(x=as_list(s[:, 0]), y=as_list(s[:, 1]), z=as_list(s[:, 2]), mode="lines",
                                        name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5, dash=DASHES[k]),
                                        hoverinfo="skip"))
-        o = g["origins"]
-        traces.append(go.Scatter3d(x=as_list(o[:, 0] + 0.03), y=as_list(o[:, 1] + 0.03), z=as_list(o[:, 2] + 0.04),
+        o = g["label_points"]
+        traces.append(go.Scatter3d(x=as_list(o[:, 0]), y=as_list(o[:, 1]), z=as_list(o[:, 2]),
                                    mode="text", text=g["labels"], name="frame names", showlegend=False,
-                                   textfont=dict(size=12, color="#333333"), hoverinfo="skip"))
+                                   textposition=g["label_positions"],
+                                   textfont=dict(size=13, color="#222222"), hoverinfo="skip"))
     return traces
 
 
@@ -110,7 +143,7 @@ def _scene(p):
         yaxis=dict(title="y (m)", range=[-reach, reach]),
         zaxis=dict(title="z (m)", range=[0.0, ztop]),
         aspectmode="manual", aspectratio=dict(x=1.15, y=1.15, z=1.15 * ztop / (2 * reach)),
-        camera=dict(eye=dict(x=1.05, y=-1.35, z=0.75), center=dict(x=0, y=0, z=-0.05)),
+        camera=dict(eye=dict(zip("xyz", _CAMERA_EYE)), center=dict(x=0, y=0, z=-0.05)),
     )
 
 
@@ -124,7 +157,7 @@ def _pose_text(q, p, head: str = ""):
             f"φ = {phi:.1f}°, det J_A = {det:.3f} m²")
 
 
-def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str | None = None,
+def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | None = None,
                height: int = 500) -> go.Figure:
     """3-D view of the arm at ``q`` with the triads of its DH frames (x, y, z axes coloured as
     ``AXIS_COLOURS`` and dashed as ``DASHES``), frame names, and the end-effector position.
@@ -141,7 +174,7 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.15, title: str |
     return finish_layout(fig, title or _pose_text(q, p), height, scene=_scene(p), uirevision="arm")
 
 
-def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: float = 0.15,
+def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: float = 0.3,
                         height: int = 540) -> go.Figure:
     """Static (kernel-free) figure: the arm of :func:`arm_figure` with one slider sweeping joint ``joint``
     (0-based: 0 = theta1, 1 = theta2, 2 = d3, 3 = theta4) over ``values``, the other joints held at ``q0``.
