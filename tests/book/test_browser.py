@@ -178,3 +178,37 @@ def test_page_offline(page, server, browser):
     assert not failed, f"{page}: failed requests: {failed[:5]}"
     assert not console, f"{page}: console errors: {console[:5]}"
     assert not errors, f"{page}: page errors: {errors[:5]}"
+
+
+ANIMATIONS = """() => Array.from(document.querySelectorAll('.plotly-graph-div'))
+  .filter(gd => (gd.layout.updatemenus || []).some(m => (m.buttons || []).some(b => b.method === 'animate')))
+  .map(gd => gd.id)"""
+
+
+@pytest.mark.parametrize("page", ["book/intro.html", "book/03_trajectory.html", "book/04_clik.html",
+                                  "book/06_control.html"])
+def test_animations_play(page, server, browser):
+    """Every animation of the page plays offline: pressing its Play button makes the frames advance; a
+    screenshot of each, taken while it plays, goes to ``_build/screenshots/``. The page stays under 3 MB."""
+    size = (HTML / page).stat().st_size
+    assert size <= 3 * 2**20, f"{page}: {size / 2**20:.2f} MB of HTML (limit 3 MB)"
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(server) else r.abort())
+    pg = context.new_page()
+    pg.goto(_page_url(server, page), wait_until="load")
+    pg.wait_for_timeout(500)
+    ids = pg.evaluate(ANIMATIONS)
+    assert ids, f"{page}: no animation (a figure with a Play button)"
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    for fid in ids:
+        gd = pg.locator(f'[id="{fid}"]')
+        gd.scroll_into_view_if_needed()
+        pg.evaluate("""(id) => { const gd = document.getElementById(id); gd.__frames = 0;
+                                 gd.on('plotly_animatingframe', () => { gd.__frames += 1; }); }""", fid)
+        gd.locator(".updatemenu-button", has_text="Play").first.click()
+        pg.wait_for_timeout(2500)
+        played = pg.evaluate("(id) => document.getElementById(id).__frames", fid)
+        gd.screenshot(path=str(SHOTS / f"animation_{Path(page).stem}_{fid}.png"))
+        gd.locator(".updatemenu-button", has_text="Pause").first.click()
+        assert played >= 3, f"{page}: pressing Play on {fid} advanced {played} frames in 2.5 s"
+    context.close()
