@@ -15,6 +15,7 @@ __all__ = [
     "UnstableError",
     "as_array",
     "as_vector",
+    "check_number",
     "check_positive",
     "check_count",
     "check_flag",
@@ -94,16 +95,25 @@ def as_vector(value, name: str, n: int = 4) -> np.ndarray:
     return as_array(value, name, (n,))
 
 
-def check_positive(value, name: str, strict: bool = True) -> float:
-    """Return ``value`` as a float after checking it is finite and positive (or non-negative)."""
+def check_number(value, name: str, what: str = "a number") -> float:
+    """Return ``value`` as a float after checking it is one finite real number: a bool, a string, an array or
+    anything ``float`` refuses raises :class:`ScaraError` ("``name`` must be ``what``, got ..."), NaN or inf
+    :class:`NonFiniteError`."""
     if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
-        raise ScaraError(f"{name} must be a number, got {value!r}")
+        raise ScaraError(f"{name} must be {what}, got {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ScaraError(f"{name} must be a number, got {value!r}") from exc
+        raise ScaraError(f"{name} must be {what}, got {value!r}") from exc
     if not np.isfinite(v):
         raise NonFiniteError(f"{name} = {v} is not finite")
+    return v
+
+
+def check_positive(value, name: str, strict: bool = True) -> float:
+    """Return ``value`` as a float after checking it is finite (:func:`check_number`) and positive (or
+    non-negative)."""
+    v = check_number(value, name)
     if (strict and v <= 0) or (not strict and v < 0):
         raise ScaraError(f"{name} = {v} must be {'> 0' if strict else '>= 0'}")
     return v

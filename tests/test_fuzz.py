@@ -420,6 +420,8 @@ TABLE = [
     Entry("errors", "as_array", lambda: [vector("value", 4), contract("name", "v"), contract("trailing", (4,)),
                                          contract("allow_batch", True)]),
     Entry("errors", "as_vector", lambda: [vector("value", 4), contract("name", "v"), contract("n", 4)]),
+    Entry("errors", "check_number", lambda: [scalar("value", -1e3, 1e3), contract("name", "v"),
+                                             contract("what", "a number")]),
     Entry("errors", "check_positive", lambda: [scalar("value", 1e-3, 1e3), contract("name", "v"),
                                                contract("strict", True)]),
     Entry("errors", "check_count", lambda: [integer("value", 0, 10), contract("name", "n"), contract("low", 0),

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_positive
+from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_number, check_positive
 from ..kinematics import _params, check_reachable, ikine, is_reachable
 from ..manipulability import manipulability
 from .paths import GEOMETRY_TOL, Arc, Line, _fmt
@@ -57,25 +57,12 @@ class Waypoint:
     def __post_init__(self):
         pos = as_array(self.position, "waypoint position", (3,))
         object.__setattr__(self, "position", tuple(float(v) for v in pos))
-        if isinstance(self.anticipation, (bool, np.bool_, str, bytes)) or np.ndim(self.anticipation) != 0:
-            raise ScaraError(f"anticipation must be a number of seconds, got {self.anticipation!r}")
-        try:
-            a = float(self.anticipation)
-        except (TypeError, ValueError, OverflowError) as exc:
-            raise ScaraError(f"anticipation must be a number of seconds, got {self.anticipation!r}") from exc
-        if not np.isfinite(a) or a < 0:
-            raise ScaraError(f"anticipation = {a} s must be finite and >= 0 (0 makes a stop point)")
+        a = check_number(self.anticipation, "anticipation", "a number of seconds")
+        if a < 0:
+            raise ScaraError(f"anticipation = {a} s must be >= 0 (0 makes a stop point)")
         object.__setattr__(self, "anticipation", a)
         if self.phi is not None:
-            if isinstance(self.phi, (bool, np.bool_, str, bytes)) or np.ndim(self.phi) != 0:
-                raise ScaraError(f"phi at a waypoint must be a number of radians, got {self.phi!r}")
-            try:
-                ph = float(self.phi)
-            except (TypeError, ValueError, OverflowError) as exc:
-                raise ScaraError(f"phi at a waypoint must be a number of radians, got {self.phi!r}") from exc
-            if not np.isfinite(ph):
-                raise ScaraError(f"phi = {ph} at a waypoint must be finite")
-            object.__setattr__(self, "phi", ph)
+            object.__setattr__(self, "phi", check_number(self.phi, "phi at a waypoint", "a number of radians"))
 
     @property
     def via(self) -> bool:
