@@ -1,0 +1,216 @@
+/* What the reader sees: figures that follow the dark theme, a text alternative on every figure, search results
+ * without raw TeX. Loaded on every page of the book (see _ext/reader.py). */
+(function () {
+  "use strict";
+
+  // ---- colours ---------------------------------------------------------------------------------------------
+  const probe = document.createElement("canvas").getContext("2d");
+
+  /** [r, g, b, a] of any CSS colour (0-255, alpha 0-1), or null. */
+  function rgba(colour) {
+    if (typeof colour !== "string" || !colour) return null;
+    probe.fillStyle = "#010203";
+    probe.fillStyle = colour;
+    const s = probe.fillStyle;  // "#rrggbb" or "rgba(r, g, b, a)"
+    if (s === "#010203" && colour.replace(/\s/g, "").toLowerCase() !== "#010203") return null;
+    if (s[0] === "#") return [1, 3, 5].map((i) => parseInt(s.slice(i, i + 2), 16)).concat([1]);
+    const m = s.match(/[\d.]+/g);
+    return m ? m.map(Number) : null;
+  }
+
+  /** Relative luminance (0 black, 1 white) of a CSS colour, or null when it is not a colour. */
+  function luminance(colour) {
+    const c = rgba(colour);
+    if (!c || c[3] === 0) return null;
+    const lin = c.slice(0, 3).map((v) => { v /= 255; return v <= 0.04045 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4); });
+    return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
+  }
+
+  function cssVar(name, fallback) {
+    const v = getComputedStyle(document.documentElement).getPropertyValue(name).trim();
+    return v || fallback;
+  }
+
+  function get(obj, path) {
+    return path.split(".").reduce((o, k) => (o == null ? undefined : o[k]), obj);
+  }
+
+  // ---- figures follow the theme ------------------------------------------------------------------------------
+  const isDark = () => document.documentElement.dataset.theme === "dark";
+
+  /** The layout changes that put a figure on the dark page: {attribute: value}. */
+  function darkLayout(gd) {
+    const full = gd._fullLayout;
+    const text = cssVar("--pst-color-text-base", "#ced6dd");
+    const muted = cssVar("--pst-color-text-muted", "#9ca4af");
+    const surface = cssVar("--pst-color-surface", "#29313d");
+    const grid = "rgba(200, 210, 220, 0.16)";
+    const line = "rgba(200, 210, 220, 0.45)";
+    const pane = "#1f242b";
+    const u = {
+      paper_bgcolor: "rgba(0, 0, 0, 0)",
+      plot_bgcolor: "rgba(255, 255, 255, 0.03)",
+      "font.color": text,
+      "title.font.color": text,
+      "legend.bgcolor": "rgba(0, 0, 0, 0)",
+      "legend.font.color": text,
+      "legend.bordercolor": line,
+    };
+    for (const key of Object.keys(full)) {
+      if (/^[xy]axis\d*$/.test(key)) {
+        Object.assign(u, {
+          [key + ".gridcolor"]: grid, [key + ".zerolinecolor"]: line, [key + ".linecolor"]: line,
+          [key + ".tickcolor"]: line, [key + ".tickfont.color"]: muted, [key + ".title.font.color"]: text,
+        });
+      } else if (/^scene\d*$/.test(key)) {
+        u[key + ".bgcolor"] = "rgba(0, 0, 0, 0)";
+        for (const ax of ["xaxis", "yaxis", "zaxis"]) {
+          Object.assign(u, {
+            // WebGL ignores the alpha of these colours: the scene's panes and grid get opaque ones
+            [`${key}.${ax}.backgroundcolor`]: pane, [`${key}.${ax}.gridcolor`]: "#3b424c",
+            [`${key}.${ax}.zerolinecolor`]: "#6b7480", [`${key}.${ax}.linecolor`]: "#6b7480",
+            [`${key}.${ax}.tickfont.color`]: muted, [`${key}.${ax}.title.font.color`]: text,
+          });
+        }
+      }
+    }
+    (full.annotations || []).forEach((a, i) => {
+      const lum = luminance(get(a, "font.color"));
+      if (lum !== null && lum < 0.25) u[`annotations[${i}].font.color`] = text;
+      const bg = luminance(a.bgcolor);
+      if (bg !== null && bg > 0.6) u[`annotations[${i}].bgcolor`] = surface;
+    });
+    (full.shapes || []).forEach((s, i) => {
+      const lum = luminance(get(s, "line.color"));
+      if (lum !== null && lum < 0.25) u[`shapes[${i}].line.color`] = line;
+    });
+    ["sliders", "updatemenus"].forEach((kind) => (full[kind] || []).forEach((m, i) => {
+      Object.assign(u, { [`${kind}[${i}].font.color`]: text, [`${kind}[${i}].bgcolor`]: surface });
+      if (kind === "sliders") Object.assign(u, {
+        [`sliders[${i}].currentvalue.font.color`]: text, [`sliders[${i}].bordercolor`]: line,
+        [`sliders[${i}].tickcolor`]: line, [`sliders[${i}].activebgcolor`]: muted,
+      });
+    }));
+    return u;
+  }
+
+  const TRACE_COLOURS = ["line.color", "marker.color", "marker.line.color", "textfont.color", "fillcolor"];
+
+  /** The trace colours too dark to read on the dark page, lightened: {attribute: [value per trace]}. */
+  function darkTraces(gd) {
+    const light = cssVar("--pst-color-text-base", "#ced6dd");
+    const changes = {};
+    (gd.data || []).forEach((trace, i) => {
+      for (const attr of TRACE_COLOURS) {
+        const v = get(trace, attr);
+        const lum = luminance(v);
+        if (typeof v === "string" && lum !== null && lum < 0.08) {
+          (changes[attr] = changes[attr] || { values: [], traces: [], before: [] });
+          changes[attr].values.push(light); changes[attr].traces.push(i); changes[attr].before.push(v);
+        }
+      }
+    });
+    return changes;
+  }
+
+  function applyTheme(gd) {
+    if (!window.Plotly || !gd._fullLayout || !gd.data) return Promise.resolve();
+    const dark = isDark();
+    if (!!gd.__themeDark === dark) return Promise.resolve();
+    gd.__themeDark = dark;
+    if (dark) {
+      const layout = darkLayout(gd);
+      const traces = darkTraces(gd);
+      // what the light page had: relayout with null restores plotly's default (the figure's template)
+      gd.__themeLight = {
+        layout: Object.fromEntries(Object.keys(layout).map((k) => [k, get(gd.layout, k.replace(/\[(\d+)\]/g, ".$1")) ?? null])),
+        traces,
+      };
+      let p = Plotly.relayout(gd, layout);
+      for (const [attr, c] of Object.entries(traces)) p = p.then(() => Plotly.restyle(gd, { [attr]: c.values }, c.traces));
+      return p;
+    }
+    const saved = gd.__themeLight;
+    if (!saved) return Promise.resolve();
+    let p = Plotly.relayout(gd, saved.layout);
+    for (const [attr, c] of Object.entries(saved.traces)) p = p.then(() => Plotly.restyle(gd, { [attr]: c.before }, c.traces));
+    return p;
+  }
+
+  function themeAll() {
+    return Promise.all(Array.from(document.querySelectorAll(".js-plotly-plot")).map(applyTheme));
+  }
+
+  // ---- a text alternative on every figure ----------------------------------------------------------------------
+  function describe(gd) {
+    if (gd.hasAttribute("aria-label")) return;
+    const figure = gd.closest("figure");
+    const caption = figure && figure.querySelector("figcaption");
+    let text = caption ? caption.textContent.replace(/\s+/g, " ").replace(/#\s*$/, "").trim() : "";
+    if (!text && gd._fullLayout) text = (get(gd._fullLayout, "title.text") || "").replace(/<[^>]+>/g, " ").trim();
+    if (!text) return;
+    gd.setAttribute("role", "group");
+    gd.setAttribute("aria-label", text);
+  }
+
+  function figures() {
+    document.querySelectorAll(".plotly-graph-div").forEach(describe);
+    return themeAll();
+  }
+
+  // ---- search results without raw TeX --------------------------------------------------------------------------
+  const SYMBOLS = {
+    alpha: "α", beta: "β", gamma: "γ", delta: "δ", epsilon: "ε", varepsilon: "ε", zeta: "ζ", eta: "η",
+    theta: "θ", vartheta: "ϑ", iota: "ι", kappa: "κ", lambda: "λ", mu: "μ", nu: "ν", xi: "ξ", pi: "π", rho: "ρ",
+    sigma: "σ", tau: "τ", upsilon: "υ", phi: "φ", varphi: "φ", chi: "χ", psi: "ψ", omega: "ω",
+    Gamma: "Γ", Delta: "Δ", Theta: "Θ", Lambda: "Λ", Xi: "Ξ", Pi: "Π", Sigma: "Σ", Phi: "Φ", Psi: "Ψ", Omega: "Ω",
+    cdot: "·", times: "×", le: "≤", leq: "≤", ge: "≥", geq: "≥", ne: "≠", neq: "≠", approx: "≈", pm: "±",
+    infty: "∞", partial: "∂", nabla: "∇", sum: "Σ", int: "∫", to: "→", rightarrow: "→", Rightarrow: "⇒",
+    implies: "⇒", dots: "…", ldots: "…", cdots: "…", circ: "∘", deg: "°", sqrt: "√", in: "∈", quad: " ",
+    qquad: " ", dagger: "†", top: "ᵀ", ell: "ℓ", mid: "|", lVert: "‖", rVert: "‖", Vert: "‖", langle: "⟨",
+    rangle: "⟩", min: "min", max: "max", sin: "sin", cos: "cos", tan: "tan", det: "det", exp: "exp", log: "log",
+  };
+  const ACCENTS = { dot: "\u0307", ddot: "\u0308", hat: "\u0302", tilde: "\u0303", bar: "\u0304", vec: "\u20d7" };
+
+  /** Plain text for a TeX fragment: J_{A} -> J_A, \vartheta_1 -> ϑ_1, \dot{q} -> q̇, \frac{a}{b} -> a/b. */
+  function texToText(tex) {
+    let s = tex;
+    for (let n = 0; n < 4; n++) {  // nested groups, innermost first
+      s = s.replace(/\\(?:d|t)?frac\s*\{([^{}]*)\}\s*\{([^{}]*)\}/g, "($1)/($2)")
+           .replace(/\\(dot|ddot|hat|tilde|bar|vec)\s*\{([^{}]*)\}/g, (m, a, x) => x + ACCENTS[a])
+           .replace(/\\(dot|ddot|hat|tilde|bar|vec)\s+(\\?[A-Za-z])/g, (m, a, x) => x + ACCENTS[a])
+           .replace(/\\(?:text|mathrm|mathbf|mathit|boldsymbol|operatorname|textrm|mathcal|bm)\s*\{([^{}]*)\}/g, "$1");
+    }
+    s = s.replace(/\\(?:left|right|big|Big|bigg|Bigg)\b\s*\\?/g, "")
+         .replace(/\\begin\{[^}]*\}|\\end\{[^}]*\}/g, " ")
+         .replace(/\\\\/g, "; ").replace(/&/g, " ")
+         .replace(/\\[,;:! ]/g, " ")
+         .replace(/\\([A-Za-z]+)/g, (m, name) => (name in SYMBOLS ? SYMBOLS[name] : name))
+         .replace(/\\([{}|%#$_])/g, "$1")
+         .replace(/[{}]/g, "");
+    return s.replace(/\s+/g, " ").trim();
+  }
+
+  /** Every \( ... \), \[ ... \] and $$ ... $$ of a text, as plain text. */
+  function stripMath(text) {
+    return text.replace(/\\\(([\s\S]*?)\\\)/g, (m, t) => texToText(t))
+               .replace(/\\\[([\s\S]*?)\\\]/g, (m, t) => " " + texToText(t) + " ")
+               .replace(/\$\$([\s\S]*?)\$\$/g, (m, t) => " " + texToText(t) + " ");
+  }
+
+  function readableSearch() {
+    if (typeof Search === "undefined" || !Search.htmlToText || Search.htmlToText.__readable) return;
+    const original = Search.htmlToText;
+    Search.htmlToText = function (html, anchor) { return stripMath(original(html, anchor)); };
+    Search.htmlToText.__readable = true;
+  }
+
+  window.scaraReader = { texToText, stripMath, applyTheme, themeAll, figures, rgba, luminance };
+
+  readableSearch();
+  document.addEventListener("DOMContentLoaded", readableSearch);
+  window.addEventListener("load", () => {
+    figures();
+    new MutationObserver(themeAll).observe(document.documentElement, { attributes: true, attributeFilter: ["data-theme"] });
+  });
+})();
