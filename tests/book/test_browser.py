@@ -2,8 +2,12 @@
 
 Serves ``_build/html`` on 127.0.0.1, aborts every other request, opens every page in Debian's Chromium
 (headless, through Playwright) and fails on: an external or failed request, a console error or page error,
-math MathJax did not typeset, a plotly figure that did not render, and, on every chapter page, a static
-slider that does not change its figure when moved. A screenshot of each page goes to ``_build/screenshots/``.
+math MathJax did not typeset, a plotly figure that did not render or has no text alternative (its caption as
+an ``aria-label``), overlapping text in a figure (``page_checks.py``), and, on every chapter page, a static
+slider that does not change its figure when moved. At phone width (390 px) every display equation must fit
+the column and no table may be cut off. The figures must follow the theme's dark mode, and search results
+must read as text, not TeX. Screenshots go to ``_build/screenshots/``: each page, and each figure alone
+(``figure_<name>.png``).
 
 Outside CI a missing Chromium or a missing build skips with the reason; with ``CI=true`` they fail.
 """
@@ -20,6 +24,7 @@ from pathlib import Path
 import pytest
 
 from jupyterlab_driver import ARGS, CHROMIUM  # one place for the browser's path and flags
+from page_checks import LAPTOP, PHONE, layout_problems, settle
 
 ROOT = Path(__file__).resolve().parents[2]
 HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))  # another build can be tested
@@ -85,7 +90,8 @@ FIGURE_STATE = """() => Array.from(document.querySelectorAll('.plotly-graph-div'
   traces: (gd._fullData || []).length,
   sliders: gd.querySelectorAll('.slider-container').length,
   caption: (() => { const f = gd.closest('figure'); const c = f && f.querySelector('figcaption');
-                    return c ? c.textContent.trim() : ''; })()
+                    return c ? c.textContent.trim() : ''; })(),
+  label: gd.getAttribute('aria-label') || ''
 }))"""
 
 EXERCISES = """() => {
@@ -141,6 +147,11 @@ def test_page_offline(page, server, browser):
 
     uncaptioned = [f["id"] for f in figs if len(f["caption"]) < 20]
     assert not uncaptioned, f"{page}: {len(uncaptioned)} figures without a caption (use plots.publish + glue:figure)"
+    unlabelled = [f["id"] for f in figs if len(f["label"]) < 20]
+    assert not unlabelled, f"{page}: figures without a text alternative (aria-label): {unlabelled}"
+    settle(pg)
+    problems = layout_problems(pg, LAPTOP)
+    assert not problems, f"{page} at {LAPTOP} px:\n  " + "\n  ".join(problems)
 
     name = Path(page).stem
     is_chapter = bool(re.match(r"\d\d_", name)) or name.startswith("appendix")
@@ -172,6 +183,10 @@ def test_page_offline(page, server, browser):
 
     SHOTS.mkdir(parents=True, exist_ok=True)
     pg.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
+    for fig_id in pg.evaluate("() => Array.from(document.querySelectorAll('figure[id^=\"fig-\"]')).map(f => f.id)"):
+        figure = pg.locator(f'figure[id="{fig_id}"]')
+        figure.scroll_into_view_if_needed()
+        figure.screenshot(path=str(SHOTS / f"figure_{fig_id}.png"))  # one file per figure, to look at
     context.close()
 
     assert not external, f"{page}: requests to other hosts: {external[:5]}"
@@ -212,3 +227,84 @@ def test_animations_play(page, server, browser):
         gd.locator(".updatemenu-button", has_text="Pause").first.click()
         assert played >= 3, f"{page}: pressing Play on {fid} advanced {played} frames in 2.5 s"
     context.close()
+
+
+def _open(browser, server, page, width, dark=False):
+    context = browser.new_context(viewport={"width": width, "height": 900})
+    context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(server) else r.abort())
+    if dark:  # the theme reads the reader's choice from localStorage before it draws the page
+        context.add_init_script("localStorage.setItem('mode', 'dark'); localStorage.setItem('theme', 'dark');")
+    pg = context.new_page()
+    pg.goto(_page_url(server, page), wait_until="load")
+    settle(pg)
+    return context, pg
+
+
+@pytest.mark.parametrize("page", _book_pages())
+def test_page_fits_a_phone(page, server, browser):
+    """At 390 px every display equation fits the column (long ones are split over lines), no table is cut off
+    (a wide one scrolls in its own box) and no two labels of a figure overlap. A screenshot of each page at
+    that width goes to ``_build/screenshots/phone_<page>.png``."""
+    context, pg = _open(browser, server, page, PHONE)
+    problems = layout_problems(pg, PHONE)
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    pg.screenshot(path=str(SHOTS / f"phone_{Path(page).stem}.png"), full_page=True)
+    context.close()
+    assert not problems, f"{page} at {PHONE} px:\n  " + "\n  ".join(problems)
+
+
+FIGURE_COLOURS = """() => Array.from(document.querySelectorAll('.js-plotly-plot')).map(gd => {
+  const lum = (c) => { const x = scaraReader.luminance(c); return x === null ? null : Math.round(x * 1000) / 1000; };
+  const full = gd._fullLayout;
+  const traces = (gd._fullData || []).flatMap(t => ['line', 'marker'].map(k => t[k] && t[k].color)
+      .filter(c => typeof c === 'string'));
+  return {id: gd.id, paper: full.paper_bgcolor, plot: full.plot_bgcolor, font: lum(full.font.color),
+          darkest: Math.min(1, ...traces.map(lum).filter(x => x !== null)),
+          page: lum(getComputedStyle(document.body).backgroundColor)};
+})"""
+
+
+@pytest.mark.parametrize("page", ["book/03_trajectory.html", "book/06_control.html"])
+def test_figures_follow_dark_mode(page, server, browser):
+    """With the theme in dark mode every figure drops its white background, writes its text in a light colour
+    and lightens trace colours too dark to see; switching back to light restores the figures. Screenshots of
+    the dark page at 1280 and 390 px go to ``_build/screenshots/dark_<page>.png`` and ``dark_phone_<page>.png``."""
+    stem = Path(page).stem
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    for width, shot in ((LAPTOP, f"dark_{stem}.png"), (PHONE, f"dark_phone_{stem}.png")):
+        context, pg = _open(browser, server, page, width, dark=True)
+        assert pg.evaluate("() => document.documentElement.dataset.theme") == "dark"
+        pg.wait_for_timeout(500)
+        figs = pg.evaluate(FIGURE_COLOURS)
+        assert figs and figs[0]["page"] < 0.1, f"{page}: the page itself is not dark ({figs[:1]})"
+        for f in figs:
+            paper = pg.evaluate("(c) => scaraReader.rgba(c)", f["paper"])
+            assert paper[3] == 0 or pg.evaluate("(c) => scaraReader.luminance(c)", f["paper"]) < 0.1, \
+                f"{page}: figure {f['id']} keeps a light background {f['paper']} in dark mode"
+            assert f["font"] > 0.4, f"{page}: figure {f['id']} writes dark text ({f['font']}) in dark mode"
+            assert f["darkest"] >= 0.08, f"{page}: figure {f['id']} draws a trace too dark to see ({f['darkest']})"
+        pg.screenshot(path=str(SHOTS / shot), full_page=True)
+        if width == LAPTOP:  # and back: the reader switches to light, the figures follow
+            pg.evaluate("() => { document.documentElement.dataset.theme = 'light'; }")
+            pg.wait_for_timeout(800)
+            light = pg.evaluate(FIGURE_COLOURS)
+            bad = [f["id"] for f in light if pg.evaluate("(c) => scaraReader.luminance(c)", f["paper"]) < 0.9]
+            assert not bad, f"{page}: figures {bad} stay dark after switching back to light"
+        context.close()
+
+
+@pytest.mark.parametrize("query", ["Jacobian", "inertia", "sliding"])
+def test_search_reads_as_text(query, server, browser):
+    """Search results list text, not the TeX source of the math they cut from a page (no \\( or _{ ... })."""
+    context = browser.new_context(viewport={"width": LAPTOP, "height": 900})
+    context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(server) else r.abort())
+    pg = context.new_page()
+    pg.goto(server + "search.html?q=" + query, wait_until="load")
+    pg.wait_for_function("() => document.querySelectorAll('#search-results p.context').length > 0", timeout=60000)
+    pg.wait_for_timeout(1500)  # the summaries arrive one page at a time
+    summaries = pg.evaluate("() => Array.from(document.querySelectorAll('#search-results p.context'))"
+                            ".map(p => p.textContent)")
+    context.close()
+    assert len(summaries) >= 2, f"search for {query!r}: {len(summaries)} results with a summary"
+    tex = [s for s in summaries if re.search(r"\\[()\[\]]|\\[A-Za-z]{2,}|[_^]\{", s)]
+    assert not tex, f"search for {query!r}: summaries with raw TeX: {[t[:120] for t in tex[:3]]}"

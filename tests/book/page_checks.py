@@ -1,0 +1,178 @@
+"""What a reader sees on a built page, measured in the browser: used by ``test_browser.py`` and runnable alone.
+
+Each check is a JavaScript function evaluated in the page once MathJax has typeset it and plotly has drawn
+its figures; each returns a list of human-readable problems (empty when the page is clean):
+
+- ``WIDE_EQUATIONS``: display equations wider than the text column (at 390 px they would need hidden
+  sideways scrolling);
+- ``WIDE_TABLES``: tables wider than the text column that are cut off (a table may scroll inside its box);
+- ``LABEL_OVERLAPS``: two text labels of one figure whose bounding boxes overlap (annotations, text drawn on
+  traces, the title, axis titles), a figure title that overlaps its legend, an axis title outside its figure.
+
+Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 390 and 1280 px)::
+
+    python tests/book/page_checks.py _build/html book/03_trajectory.html [more pages]
+"""
+from __future__ import annotations
+
+import functools
+import http.server
+import sys
+import threading
+from pathlib import Path
+
+# the width of a phone and of a laptop, in CSS pixels
+PHONE, LAPTOP = 390, 1280
+
+WIDE_EQUATIONS = """() => {
+  const out = [];
+  document.querySelectorAll('div.math').forEach((box, i) => {
+    const m = box.querySelector('mjx-container > mjx-math, mjx-container svg');
+    if (!m) return;
+    // a number floated right leaves the equation the rest of the line (on a phone it has a line of its own)
+    const eqno = box.querySelector('.eqno');
+    const floated = eqno && getComputedStyle(eqno).float !== 'none';
+    const room = box.clientWidth - (floated ? eqno.getBoundingClientRect().width : 0);
+    const width = m.getBoundingClientRect().width;
+    if (width > room + 1) {
+      const id = box.id || (box.querySelector('[id]') || {}).id || ('#' + (i + 1));
+      out.push(`equation ${id} is ${Math.round(width)} px wide in a ${Math.round(room)} px column: `
+               + box.textContent.replace(/\\s+/g, ' ').trim().slice(0, 60));
+    }
+  });
+  return out;
+}"""
+
+WIDE_TABLES = """() => {
+  const out = [];
+  document.querySelectorAll('article table').forEach((t, i) => {
+    // a wide table may scroll sideways inside its own box (as the theme's tables do), but never be cut off
+    let box = t.parentElement, scrolls = false;
+    for (; box && box.tagName !== 'ARTICLE'; box = box.parentElement) {
+      const o = getComputedStyle(box).overflowX;
+      if (o === 'auto' || o === 'scroll') { scrolls = true; break; }
+      if (o === 'hidden' || o === 'clip') break;
+    }
+    const room = document.querySelector('article').clientWidth;
+    const width = t.getBoundingClientRect().width;
+    if (width > room + 1 && !scrolls)
+      out.push(`table ${i + 1} is ${Math.round(width)} px wide in a ${room} px column and cut off: `
+               + t.textContent.replace(/\\s+/g, ' ').trim().slice(0, 60));
+  });
+  return out;
+}"""
+
+# The text of a figure: annotations (subplot titles included), text drawn on traces, the title and the axis
+# titles. Legend entries are checked as one box against the title. Hidden and empty texts are skipped.
+LABEL_OVERLAPS = """() => {
+  const out = [];
+  const visible = (el) => {
+    const r = el.getBoundingClientRect();
+    if (r.width < 1 || r.height < 1 || !el.textContent.trim()) return null;
+    for (let e = el; e && e.nodeType === 1; e = e.parentElement) {
+      const s = getComputedStyle(e);
+      if (s.display === 'none' || s.visibility === 'hidden' || parseFloat(s.opacity) === 0) return null;
+    }
+    return r;
+  };
+  const overlap = (a, b, tol) => Math.min(a.right, b.right) - Math.max(a.left, b.left) > tol
+                              && Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top) > tol;
+  document.querySelectorAll('.plotly-graph-div').forEach(gd => {
+    if (!gd._fullLayout) return;
+    const name = gd.id;
+    const labels = [];
+    const take = (sel, kind) => gd.querySelectorAll(sel).forEach(el => {
+      const r = visible(el);
+      if (r) labels.push({kind, text: el.textContent.trim().slice(0, 40), r});
+    });
+    take('.annotation-text-g text, .annotation text', 'annotation');
+    take('.textpoint text', 'trace text');
+    take('.g-gtitle text, .gtitle', 'title');
+    take('[class*="xtitle"], [class*="ytitle"]', 'axis title');
+    const seen = new Set(), uniq = labels.filter(l => {
+      const k = [l.text, Math.round(l.r.left), Math.round(l.r.top)].join('|');
+      if (seen.has(k)) return false; seen.add(k); return true; });
+    for (let i = 0; i < uniq.length; i++)
+      for (let j = i + 1; j < uniq.length; j++)
+        if (overlap(uniq[i].r, uniq[j].r, 1))
+          out.push(`${name}: ${uniq[i].kind} "${uniq[i].text}" overlaps ${uniq[j].kind} "${uniq[j].text}"`);
+    const legend = gd.querySelector('.legend');
+    const lr = legend && visible(legend);
+    if (lr) uniq.filter(l => l.kind === 'title' || l.kind === 'axis title').forEach(t => {
+      if (overlap(t.r, lr, 1)) out.push(`${name}: ${t.kind} "${t.text}" overlaps the legend`);
+    });
+    const fr = gd.getBoundingClientRect();
+    uniq.filter(l => l.kind === 'axis title' || l.kind === 'title').forEach(t => {
+      if (t.r.left < fr.left - 1 || t.r.right > fr.right + 1 || t.r.top < fr.top - 1 || t.r.bottom > fr.bottom + 1)
+        out.push(`${name}: ${t.kind} "${t.text}" spills out of the figure`);
+    });
+  });
+  return out;
+}"""
+
+MATH_READY = "() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null"
+FIGURES_READY = """() => Array.from(document.querySelectorAll('.plotly-graph-div')).every(
+  gd => !!gd._fullLayout && gd.querySelectorAll('.main-svg').length > 0)"""
+
+
+def settle(pg, timeout: float = 30000) -> None:
+    """Wait until MathJax has typeset the page and every plotly figure is drawn (and redrawn at this width)."""
+    pg.wait_for_function("() => !document.querySelector('.math') || (window.MathJax && MathJax.startup"
+                         " && MathJax.startup.promise)", timeout=timeout)
+    pg.evaluate(MATH_READY)
+    pg.wait_for_function(FIGURES_READY, timeout=timeout)
+    pg.evaluate("() => Promise.all(Array.from(document.querySelectorAll('.plotly-graph-div'))"
+                ".map(gd => window.Plotly ? Plotly.Plots.resize(gd) : null))")
+    pg.wait_for_timeout(200)
+
+
+def layout_problems(pg, width: int) -> list[str]:
+    """Every problem of the page at this viewport width (the page is loaded and settled)."""
+    problems = list(pg.evaluate(LABEL_OVERLAPS))
+    if width <= PHONE:
+        problems += pg.evaluate(WIDE_EQUATIONS) + pg.evaluate(WIDE_TABLES)
+    return problems
+
+
+def _serve(folder: Path):
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(folder)))
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    return httpd, f"http://127.0.0.1:{httpd.server_address[1]}/"
+
+
+def main(argv: list[str]) -> int:
+    from playwright.sync_api import sync_playwright
+
+    from jupyterlab_driver import ARGS, CHROMIUM
+
+    folder, pages = Path(argv[0]), argv[1:]
+    httpd, url = _serve(folder)
+    found = 0
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
+        for page in pages:
+            page = page if "/" in page else "book/" + page
+            for width in (PHONE, LAPTOP):
+                ctx = browser.new_context(viewport={"width": width, "height": 900})
+                ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
+                pg = ctx.new_page()
+                pg.goto(url + page, wait_until="load")
+                settle(pg)
+                problems = layout_problems(pg, width)
+                found += len(problems)
+                print(f"{page} at {width} px: {len(problems)} problem(s)")
+                for p in problems:
+                    print("   ", p)
+                ctx.close()
+        browser.close()
+    httpd.shutdown()
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(Path(__file__).parent))
+    sys.exit(main(sys.argv[1:]))
