@@ -33,7 +33,7 @@ Discrete-time stability (Euler, sampling period ``dt``). Linearising one step,
   ``K^1/2 J_A J_A^T K^1/2`` (and to ``J_A^T K J_A``, the matrix of the joint-space iteration), so its
   eigenvalues ``mu_i(q)`` are real and positive and the step is stable iff ``dt mu_max(q) < 2`` at every
   configuration met (4.12). :func:`transpose_stability` evaluates ``mu_max`` along the reference;
-* second order, per component with ``a = dt K_D``, ``b = dt^2 K_P``: the characteristic polynomial (4.17)
+* second order, per component with ``a = dt K_D``, ``b = dt^2 K_P``: the characteristic polynomial (4.19)
   ``z^2 - (2 - a) z + (1 - a + b)`` has both roots inside the unit circle iff ``b < a`` and ``2 a - b < 4``
   (Jury's test); with ``K_D = 2 omega``, ``K_P = omega^2`` both poles sit at ``z = 1 - omega dt``.
 """
@@ -340,7 +340,8 @@ def _clik1_kernel(ref, law, arm, out, info):
 
 @kernel
 def _clik2_kernel(ref, law, arm, out, info):
-    """Second-order CLIK loop (4.16): ``qdd_k = J^-1 (xdd_d + K_D ed + K_P e - Jd qd)`` (or its damped form),
+    """Second-order CLIK loop (4.16), ``Jd qd`` as in (4.18):
+    ``qdd_k = J^-1 (xdd_d + K_D ed + K_P e - Jd qd)`` (or its damped form),
     then Euler ``q_{k+1} = q_k + dt qd_k``, ``qd_{k+1} = qd_k + dt qdd_k``.
 
     Arguments as for :func:`_clik1_kernel` with a :class:`SecondOrderLaw`; ``out.q[0]`` and ``out.qd[0]``
@@ -852,7 +853,7 @@ def _check_first_order_stability(traj, method, law, objective, x_d, q_start, p):
 
 
 def _check_second_order_stability(K_P, K_D, dt):
-    """Refuse gains that put a discrete pole of (4.17) on or outside the unit circle (Jury's test)."""
+    """Refuse gains that put a discrete pole of (4.19) on or outside the unit circle (Jury's test)."""
     a, b = dt * K_D, dt * dt * K_P
     bad = ~((b < a) & (2 * a - b < 4))
     if bad.any():

@@ -330,7 +330,7 @@ def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
 
 
 def jacobian_dot(q, qd, p: ScaraParams | None = None) -> np.ndarray:
-    """``Jdot_A(q, qd)``, the time derivative of :func:`jacobian` along a motion, shape (4, 4)."""
+    """``Jdot_A(q, qd)``, the time derivative of :func:`jacobian` along a motion (4.17), shape (4, 4)."""
     p = _params(p)
     q = check_angles(as_array(q, "q", (4,)))
     qd = as_array(qd, "qd", (4,))

@@ -15,13 +15,13 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik
-from ..errors import ScaraError, UnstableError
+from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik, clik2, second_order_gains
+from ..errors import ScaraError, UnstableError, as_array
 from ._common import (
     AXIS_COLOURS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, METHOD_DASHES, METHOD_LABELS, PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
-from ._common import MAX_POINTS, check_count
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, check_count
 from .layout import finish_layout, stacked_axes
 
 __all__ = [
@@ -40,6 +40,8 @@ __all__ = [
     "second_order_figure",
     "convergence_figure",
     "gain_slider_figure",
+    "gain_steps_figure",
+    "relaxed_figure",
     "comparison_rows",
 ]
 
@@ -318,9 +320,11 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
                        title: str | None = None, height: int = 500) -> go.Figure:
     """Static slider over the gain: for each scale ``c`` (``K = c`` × the seed ``diag(400, 400, 400, 100)``) the
     position-error envelope of each method on ``traj``. Works with no kernel (slider steps toggle visibility).
+    Each step's title gives the scale on its first line and each method's largest position error after the
+    first 0.1 s (:meth:`ClikResult.summary`) below, two methods a line.
 
     Scales past a method's discrete-time stability limit are skipped for that method (the curve is absent and
-    the title says so). At most 25 scales.
+    the title says ``unstable``). At most 25 scales.
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work.
@@ -337,14 +341,15 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
             try:
                 r = clik(traj, m, s * np.asarray(SEED_K))
                 tt, yy = envelope(r.t, r.position_error, points)
-                summ = r.summary()
-                note.append(f"{m}: max {summ['max_position_error'] * 1e3:.3g} mm")
+                note.append(f"{m}: {length_text(r.summary()['max_position_error'])}")
             except UnstableError:
                 tt, yy = np.array([]), np.array([])
                 note.append(f"{m}: unstable")
             fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=run_label(m),
                                      visible=False, line=dict(color=run_colour(m), width=1.8, dash=run_dash(m))))
-        notes.append("<br>".join(note))
+        # two methods per line: with the first line the title keeps to two lines (a taller title would run
+        # into the legend) and each line to the 45 characters of a phone-width page
+        notes.append("<br>".join(", ".join(note[k:k + 2]) for k in range(0, len(note), 2)))
     nm = len(methods)
     active = int(np.argmin(np.abs(scales - 1.0)))
     for k in range(nm):
@@ -355,11 +360,130 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
         for k in range(nm):
             vis[i * nm + k] = True
         steps.append({"label": f"{s:.2f}", "method": "update",
-                      "args": [{"visible": vis}, {"title.text": f"K = {s:.2f} × seed<br>{notes[i]}"}]})
-    finish_layout(fig, f"K = {scales[active]:.2f} × seed<br>{notes[active]}", height,
+                      "args": [{"visible": vis}, {"title.text": f"K = {s:.2f} × seed, largest ‖e_p‖<br>{notes[i]}"}]})
+    finish_layout(fig, f"K = {scales[active]:.2f} × seed, largest ‖e_p‖<br>{notes[active]}", height,
                   sliders=[slider(steps, "gain scale × seed K: ", active=active)])
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", range=[-10.5, -1.5])
+    return fig
+
+
+def length_text(metres: float) -> str:
+    """A length for a title, to three significant digits in the unit that suits it: ``"30.3 nm"``,
+    ``"4.70 µm"``, ``"2.24 mm"``, ``"0.638 m"`` (metres from 0.1 m up, nanometres below 1 µm)."""
+    metres = float(metres)
+    if metres == 0.0:
+        return "0 m"
+    rounded = abs(float(f"{metres:.3g}"))
+    unit, size = next(((u, s) for u, s, least in (("m", 1.0, 0.1), ("mm", 1e-3, 1e-3), ("µm", 1e-6, 1e-6))
+                       if rounded >= least), ("nm", 1e-9))
+    return f"{f'{metres / size:#.3g}'.rstrip('.')} {unit}"
+
+
+def _run_with_gains(traj, method: str, K):
+    """One CLIK run with the gains ``K`` (4,) of :func:`clik`; the second-order CLIK takes ``K_P = K²``,
+    ``K_D = 2K`` (:func:`scara.clik.second_order_gains`), as the chapter's live panel does."""
+    if method == "second_order":
+        return clik2(traj, *second_order_gains(np.asarray(K, dtype=float)))
+    return clik(traj, method, np.asarray(K, dtype=float))
+
+
+def gain_steps_figure(traj, gains: dict, method: str = "transpose", points: int = 600, title: str | None = None,
+                      prefix: str = "", suffix: str = "", height: int = 460) -> go.Figure:
+    """Static slider over chosen gain vectors: for each step ``label: K`` of ``gains`` (``K`` the four gains
+    ``K_x, K_y, K_z, K_φ`` in 1/s) the position-error envelope of one ``method`` on ``traj``: the inverse
+    (4.4) or the transpose (4.8) run by :func:`scara.clik.clik`, or the second-order law (4.16) run by
+    :func:`scara.clik.clik2` with ``K_P = K²``, ``K_D = 2K``. It is what the chapter's live panel shows when
+    its gain sliders are set to each ``K``, and works with no kernel (slider steps toggle visibility).
+
+    Each step's title names the method (or ``title``) and the step (``prefix + label + suffix``, also shown
+    above the slider) and, below, the largest position error after the first 0.1 s
+    (:meth:`ClikResult.summary`), or ``refused: past the stability limit`` where the discrete-time limits
+    (4.6), (4.12) or (4.19) fail and :func:`scara.clik.clik` or :func:`scara.clik.clik2` refuses the gains
+    (:class:`UnstableError`; the step then draws no curve). The log axis spans eight decades below the largest
+    error of all steps.
+
+    Limits: 1 to 25 steps; ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), and at most 100 000
+    samples in all (``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work.
+    """
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    if not isinstance(gains, dict) or not 1 <= len(gains) <= 25:
+        raise ScaraError("gain_steps_figure takes a dict {label: K} of 1 to 25 gain vectors")
+    check_count(points * len(gains), "points × steps", MAX_SLIDER_SAMPLES, minimum=2, what="samples in all")
+    if method not in METHOD_LABELS or method == "pseudoinverse":
+        raise ScaraError(f"method {method!r}: use 'inverse', 'transpose' or 'second_order'")
+    Ks = {str(label): as_array(K, f"gains[{label!r}]", (4,)) for label, K in gains.items()}
+    head = title or run_label(method)
+    fig = go.Figure()
+    heads, top = [], 0.0
+    for label, K in Ks.items():
+        try:
+            r = _run_with_gains(traj, method, K)
+            tt, yy = envelope(r.t, r.position_error, points)
+            note = f"largest ‖e_p‖: {length_text(r.summary()['max_position_error'])}"
+            top = max(top, float(yy.max()))
+        except UnstableError:
+            tt, yy = np.array([]), np.array([])
+            note = "refused: past the stability limit"
+        fig.add_trace(go.Scatter(x=f32(tt), y=f32(yy), mode="lines", name=run_label(method), visible=False,
+                                 line=dict(color=run_colour(method), width=1.8, dash=run_dash(method))))
+        heads.append(f"{head}, {prefix}{label}{suffix}<br>{note}")
+    fig.data[0].visible = True
+    steps = []
+    for i, label in enumerate(Ks):
+        vis = [k == i for k in range(len(Ks))]
+        steps.append({"label": label, "args": [{"visible": vis}, {"title.text": heads[i]}]})
+    bar = slider(steps, prefix)
+    bar["currentvalue"]["suffix"] = suffix
+    finish_layout(fig, heads[0], height, sliders=[bar])
+    fig.update_xaxes(title_text="t (s)")
+    upper = math.log10(top) + 0.5 if top > 0 else -1.0
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", range=[upper - 8.5, upper])
+    return fig
+
+
+def relaxed_figure(results, reference: ClikResult | None = None, points: int = 1000,
+                   height: int = 520) -> go.Figure:
+    """Pseudo-inverse runs (4.13) that climb ``w_0`` (4.14), each with another component relaxed, shown one at
+    a time (a dropdown picks it): top, the manipulability ``w(t)`` of the run against that of ``reference``
+    (e.g. the Jacobian inverse, dashed); bottom, the drift ``x_e - x_d`` of the relaxed component, the price of
+    the freedom. Each entry's title gives the mean ``w`` over the run (:meth:`ClikResult.summary`) and the
+    largest drift ``max |e_i|``.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole
+    number, raises :class:`ScaraError` before any work; every result must be a pseudo-inverse run."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    rs = _results(results)
+    if not all(r.method == "pseudoinverse" for r in rs):
+        raise ScaraError("relaxed_figure needs pseudo-inverse runs (clik(traj, 'pseudoinverse', relaxed=...))")
+    ref = _results(reference)[0] if reference is not None else None
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    groups, menu = [], []
+    for r in rs:
+        c = r.gains.get("relaxed", "x")
+        i = COMPONENTS.index(c)
+        unit = "rad" if i == 3 else "m"
+        first = len(fig.data)
+        idx = thin(len(r.t), points)
+        fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(r.w[idx]), mode="lines", name=f"w · {run_label(r)}",
+                                 line=dict(color=run_colour(r), width=2.0)), row=1, col=1)
+        if ref is not None:
+            ii = thin(len(ref.t), points)
+            fig.add_trace(go.Scatter(x=f32(ref.t[ii]), y=f32(ref.w[ii]), mode="lines", name=f"w · {run_label(ref)}",
+                                     line=dict(color=run_colour(ref), width=1.6, dash="dash")), row=1, col=1)
+        fig.add_trace(go.Scatter(x=f32(r.t[idx]), y=f32(-r.e[idx, i]), mode="lines", name=f"drift of {c}",
+                                 line=dict(color=AXIS_COLOURS[i], width=1.8, dash=DASHES[i])), row=2, col=1)
+        groups.append(list(range(first, len(fig.data))))
+        drift = float(np.abs(r.e[:, i]).max())
+        drift_text = f"{drift:.3g} rad" if i == 3 else length_text(drift)
+        menu.append((f"{c} relaxed", f"{c} relaxed: mean w = {r.summary()['mean_manipulability']:.3f} m²<br>"
+                     f"largest drift of {c}: {drift_text}",
+                     {"yaxis2.title.text": f"{c}_e − {c}_d ({unit})"}))
+    finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
+    stacked_axes(fig, ("w (m²)", menu[0][2]["yaxis2.title.text"]))
+    wmax = max(float(np.max(r.w)) for r in rs + ([ref] if ref is not None else []))
+    fig.update_yaxes(range=[0, max(0.26, 1.05 * wmax)], row=1, col=1)
     return fig
 
 

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import plotly.graph_objects as go
 
-from ..errors import ScaraError, as_array, as_vector, check_positive
+from ..errors import ScaraError, as_array, as_vector, check_number, check_positive
 from ..kinematics import _params, ikine
 from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, as_list, slider
@@ -35,6 +35,8 @@ __all__ = [
     "manipulability_map_figure",
     "duality_figure",
     "ellipse_slider_figure",
+    "major_axis_angle",
+    "base_turn_figure",
 ]
 
 #: the five reference configurations of chapter 2 (section *Five reference configurations*), with their labels
@@ -336,5 +338,54 @@ def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: f
     fig.add_trace(_boundary_trace(p))
     finish_layout(fig, title(vals[active], qs[active]), height,
                   sliders=[slider(steps, prefix="θ2 (°) = ", active=active)])
+    top_axes(fig, p)
+    return fig
+
+
+def major_axis_angle(ellipsoid) -> float:
+    """Direction of the major axis of a horizontal ellipse (``rows=(0, 1)``): the principal axis ``u_i`` of
+    (2.2) with the largest semi-axis ``sigma_i``, in degrees from ``x_b`` towards ``y_b``, in (-90°, 90°]: an
+    axis has no sign, so the angle is taken modulo 180°."""
+    u = np.asarray(ellipsoid.axes)[:, int(np.argmax(ellipsoid.lengths))]
+    a = math.degrees(math.atan2(u[1], u[0])) % 180.0
+    return a - 180.0 if a > 90.0 else a
+
+
+def base_turn_figure(theta1_deg=None, theta2: float = math.pi / 4, p=None, scale: float = 0.15,
+                     height: int = 560) -> go.Figure:
+    """Static (kernel-free) figure: the arm and its velocity and force ellipses with their principal axes
+    (top view), one slider step per ``theta1`` of ``theta1_deg`` (degrees; default 0° to 60° in steps of 10°)
+    with ``theta2`` (rad) held, by default 45° (configuration q2). Each step restyles the arm and the ellipses
+    and retitles the figure with ``theta1``, ``w`` (2.4), the direction of the major velocity axis
+    (:func:`major_axis_angle`) and the semi-axes ``sigma_1, sigma_2`` and ``1/sigma_1, 1/sigma_2``. Raises :class:`ScaraError` for fewer than 2 or more than 61
+    steps or a scale that is not positive.
+
+    >>> fig = base_turn_figure()
+    >>> [s.label for s in fig.layout.sliders[0].steps]
+    ['0', '10', '20', '30', '40', '50', '60']
+    """
+    p = _params(p)
+    vals = np.arange(0.0, 61.0, 10.0) if theta1_deg is None else as_array(theta1_deg, "theta1_deg",
+                                                                            (len(np.atleast_1d(theta1_deg)),))
+    if not 2 <= len(vals) <= 61:
+        raise ScaraError(f"{len(vals)} slider steps: use between 2 and 61 (pages stay light)")
+    scale = check_positive(scale, "scale")
+    theta2 = check_number(theta2, "theta2", "an angle in rad")
+    qs = [np.array([math.radians(v), theta2, 0.5 * p.d0, 0.0]) for v in vals]
+
+    def title(v, q):
+        major = major_axis_angle(velocity_ellipsoid(q, p, rows=(0, 1)))
+        return (f"θ1 = {v:.0f}°: w = {manipulability(q, p):.3f} m², major axis {major:.1f}°<br>"
+                f"{_axes_text(q, p)}")
+
+    fig = go.Figure(ellipse_traces(qs[0], p, scale, scale, axes=True))
+    steps = []
+    for v, q in zip(vals, qs):
+        tr = ellipse_traces(q, p, scale, scale, axes=True)
+        steps.append(dict(label=f"{v:.0f}", method="update",
+                          args=[{"x": [t.x for t in tr], "y": [t.y for t in tr]}, {"title.text": title(v, q)},
+                                list(range(len(tr)))]))
+    fig.add_trace(_boundary_trace(p))
+    finish_layout(fig, title(vals[0], qs[0]), height, sliders=[slider(steps, prefix="θ1 (°) = ")])
     top_axes(fig, p)
     return fig
