@@ -4,20 +4,23 @@ and the inertia matrix at a configuration. Data in, figure out: the numbers come
 and :mod:`scara.simulate`."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..dynamics import TORQUE_TERMS, inertia
-from ..errors import ScaraError
+from ..errors import ScaraError, as_vector
 from ..kinematics import _params
-from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, f32, slider, thin
-from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, check_count
+from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, LOG_FLOOR, f32, slider, thin
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, MAX_SWEEP, check_count
 from .layout import finish_layout, stacked_axes
 
 __all__ = [
     "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "torque_share_figure",
-    "torque_terms_figure", "payload_torque_figure", "payload_slider_figure", "energy_figure", "inertia_figure",
+    "torque_terms_figure", "payload_torque_figure", "payload_slider_figure", "energy_figure", "window_max",
+    "inertia_figure", "inertia_slider_figure",
 ]
 
 #: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
@@ -169,18 +172,39 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
                          sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
 
 
-def energy_figure(t, energy: dict, title: str = "Energy of the released arm", target: int = 1000,
-                  height: int = 540) -> go.Figure:
-    """Top: kinetic energy, potential energy and total energy (relative to their start values), the work
-    dissipated by friction and the work done by the torques; bottom: the balance residual
-    ``E - E(0) - W_in + W_f`` (J). ``energy`` is :meth:`scara.SimulationResult.energy`.
+def window_max(t, y, size: int):
+    """``(t_k, max |y|)`` over consecutive windows of ``size`` samples of the series ``y`` (N,); the last window
+    also takes the samples left over (fewer than ``size``), so that no window is a lone sample, and a series of at
+    most ``size`` samples is one window. ``t_k`` is the midpoint of the window's first and last times. Unlike a
+    sample every ``size`` steps, the window maximum keeps every peak, and a series that alternates from one
+    sample to the next (as a residual of Simpson's rule does) draws as one line, not as a band. Values are
+    floored at ``LOG_FLOOR`` (1e-12) for a log axis. ``size`` is a whole number from 1 to ``MAX_POINTS``."""
+    size = check_count(size, "size", MAX_POINTS, what="samples per window")
+    t = np.asarray(t, dtype=float)
+    y = np.abs(np.asarray(y, dtype=float))
+    if t.shape != y.shape or t.ndim != 1 or not len(t):
+        raise ScaraError(f"t and y must be series of the same length, got shapes {t.shape} and {y.shape}")
+    starts = np.arange(0, max(len(t) - size, 0) + 1, size)
+    ends = np.append(starts[1:] - 1, len(t) - 1)
+    peaks = np.maximum.reduceat(y, starts)
+    return 0.5 * (t[starts] + t[ends]), np.maximum(peaks, LOG_FLOOR)
 
-    Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
-    raises :class:`ScaraError` before any work."""
+
+def energy_figure(t, energy: dict, title: str = "Energy of the released arm", target: int = 1000,
+                  height: int = 540, window: int = 10) -> go.Figure:
+    """Top: kinetic energy, potential energy and total energy (relative to their start values), the work
+    dissipated by friction and the work done by the torques; bottom, on a log axis: the largest absolute value of
+    the balance residual ``E - E(0) - W_in + W_f`` (J) in each window of ``window`` consecutive samples
+    (:func:`window_max`; more samples per window if the run has more than ``target`` windows).
+    ``energy`` is :meth:`scara.SimulationResult.energy`.
+
+    Limits: ``target`` from 2 to 10 000 samples per curve and ``window`` from 1 to 10 000 samples
+    (``MAX_POINTS``); a value outside, or not a whole number, raises :class:`ScaraError` before any work."""
     target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
+    window = check_count(window, "window", MAX_POINTS, what="samples per residual window")
     t = np.asarray(t)
     idx = thin(len(t), target)
-    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.7, 0.3], vertical_spacing=0.1)
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.64, 0.36], vertical_spacing=0.1)
     T, U, E = (np.asarray(energy[k]) for k in ("kinetic", "potential", "total"))
     series = [("kinetic T", T - T[0], "#0072B2", "solid"),
               ("potential U − U(0)", U - U[0], "#009E73", "dash"),
@@ -192,11 +216,17 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
         width = 3.2 if name.startswith("total") else 2
         fig.add_scatter(x=f32(t[idx]), y=f32(y[idx]), mode="lines", name=name, line=dict(color=c, dash=d, width=width),
                         row=1, col=1)
-    fig.add_scatter(x=f32(t[idx]), y=np.asarray(energy["balance"])[idx], mode="lines",
-                    name="balance residual E − E(0) − W_in + W_f", showlegend=False,
-                    line=dict(color="#999999", width=1.5), row=2, col=1)
-    stacked_axes(fig, ("energy (J)", "E − E(0) − W_in + W_f (J)"))
-    fig.update_yaxes(exponentformat="e", row=2, col=1)
+    size = max(window, -(-len(t) // target))
+    tt, peak = window_max(t, energy["balance"], size)
+    fig.add_scatter(x=f32(tt), y=f32(peak), mode="lines", name=f"largest |residual| per {size} samples",
+                    showlegend=False, line=dict(color="#555555", width=1.8),
+                    hovertemplate="t = %{x:.3f} s<br>largest |E − E(0) − W_in + W_f| = %{y:.2e} J<extra></extra>",
+                    row=2, col=1)
+    # whole decades around the residual, one tick each: a narrow log range would label odd fractions of a decade
+    lo = math.floor(math.log10(float(peak.min())))
+    hi = max(math.ceil(math.log10(float(peak.max()))), lo + 1)
+    stacked_axes(fig, ("energy (J)", "|residual| (J)"), log=(2,))
+    fig.update_yaxes(range=[lo, hi], dtick=1, row=2, col=1)
     return finish_layout(fig, title, height)
 
 
@@ -234,4 +264,65 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     fig.update_xaxes(title_text="kg m² (B33: kg)", row=1, col=2)
     fig.update_yaxes(autorange="reversed", row=1, col=2)
     finish_layout(fig, title, 460, subplot_titles=True, barmode="stack")
+    return fig
+
+
+#: the entries of B drawn by :func:`inertia_slider_figure`: (row, column), legend name, colour, dash
+_INERTIA_CURVES = (((0, 0), "B11", "#0072B2", "solid"), ((0, 1), "B12", "#E69F00", "dash"),
+                   ((1, 1), "B22", "#009E73", "dot"))
+
+
+def inertia_slider_figure(theta2_deg, masses, p=None, q=(0.0, 0.0, 0.5, 0.0),
+                          title: str = "Arm inertia against the elbow", height: int = 500,
+                          active: int = 0) -> go.Figure:
+    """Static slider figure: ``B11``, ``B12`` and ``B22`` of :func:`scara.dynamics.inertia` (kg m²) against the
+    elbow angle ``theta2_deg`` (degrees), one slider step per payload mass in ``masses`` (kg) on the robot ``p``.
+    ``q`` is a configuration (rad, rad, m, rad) whose theta1, d3 and theta4 are held; its theta2 is replaced by
+    each angle of the sweep (``B`` depends on theta2 alone, so the others only label the figure). Each
+    step restyles the three curves and the title; the y range is the same for every step, so that the curves of
+    two payloads compare. ``active`` is the index of the mass shown first. Works in the HTML with no kernel.
+
+    Limits: 2 to 2001 angles (``MAX_SWEEP``), at most 121 masses (``MAX_STEPS``) and at most 100 000 samples per
+    curve in all the steps together (masses × angles, ``MAX_SLIDER_SAMPLES``); a count outside raises
+    :class:`ScaraError` before any work."""
+    theta2_deg = np.asarray(theta2_deg, dtype=float).ravel()
+    masses = [float(m) for m in np.asarray(masses, dtype=float).ravel()]
+    check_count(len(theta2_deg), "len(theta2_deg)", MAX_SWEEP, minimum=2, what="elbow angles")
+    check_count(len(masses), "len(masses)", MAX_STEPS, what="payload masses (slider steps)")
+    check_count(len(masses) * len(theta2_deg), f"{len(masses)} masses × {len(theta2_deg)} angles",
+                MAX_SLIDER_SAMPLES, what="samples per curve in all the slider steps")
+    if not 0 <= int(active) < len(masses):
+        raise ScaraError(f"active = {active} is not the index of one of the {len(masses)} payload masses")
+    active = int(active)
+    p = _params(p)
+    q = as_vector(q, "q")
+    configs = np.repeat(q[None, :], len(theta2_deg), axis=0)
+    configs[:, 1] = np.radians(theta2_deg)
+    curves = {}     # mass -> (3, n) array of the entries drawn
+    for m in masses:
+        robot = p.with_payload(m)
+        B = np.array([inertia(c, robot) for c in configs])
+        curves[m] = np.array([B[:, i, j] for (i, j), *_ in _INERTIA_CURVES])
+    fig = go.Figure()
+    shown = curves[masses[active]]
+    for k, (_, name, colour, dash) in enumerate(_INERTIA_CURVES):
+        fig.add_scatter(x=f32(theta2_deg), y=f32(shown[k]), mode="lines", name=name,
+                        line=dict(color=colour, dash=dash, width=2.2),
+                        hovertemplate=name + " = %{y:.4g} kg m²<extra></extra>")
+    lo = min(float(v.min()) for v in curves.values())
+    hi = max(float(v.max()) for v in curves.values())
+    pad = 0.05 * (hi - lo) + 1e-6
+
+    def heading(m):
+        return f"{title}<br>payload {m:g} kg"
+
+    steps = [dict(label=f"{m:g}", method="update",
+                  args=[{"y": [[float(f"{v:.5g}") for v in curves[m][k]] for k in range(len(_INERTIA_CURVES))]},
+                        {"title.text": heading(m)}, list(range(len(_INERTIA_CURVES)))])
+             for m in masses]
+    finish_layout(fig, heading(masses[active]), height, bottom=130, hovermode="x unified",
+                  sliders=[slider(steps, "payload m_L (kg): ", active=active, pad_top=50)])
+    fig.update_xaxes(title_text="θ2 (°)", tickvals=[-180, -90, 0, 90, 180],
+                     range=[float(theta2_deg.min()), float(theta2_deg.max())])
+    fig.update_yaxes(title_text="entry of B (kg m²)", range=[lo - pad, hi + pad])
     return fig
