@@ -1,6 +1,7 @@
 """Figures of chapter 3 (trajectory planning): the path in 3-D and from above, the time profiles with the
 segments shaded, a via point's corner with and without anticipation (also as a kernel-free slider figure),
-and the joint motion with the manipulability met along the path.
+the joint motion with the manipulability met along the path, and the tool path of a joint-space trajectory
+against the operational one (a kernel-free slider over the number of knots).
 
 Every builder takes a :class:`~scara.trajectory.Trajectory` (or the inputs of
 :func:`~scara.trajectory.plan_path`) and returns a ``plotly.graph_objects.Figure``. Long series are decimated
@@ -8,16 +9,19 @@ to about ``points`` samples for drawing, always keeping the stop instants, so pa
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..errors import ScaraError, as_array
 from ..trajectory import Trajectory, Trapezoidal, plan_path
-from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, slider
+from ..trajectory.joint import KINDS, joint_counterpart, path_deviation
+from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, as_list, slider
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, check_count
 from .kinematics import top_view_arm
-from .layout import finish_layout, stacked_axes
+from .layout import _text_width, finish_layout, stacked_axes
 
 __all__ = [
     "decimate",
@@ -31,6 +35,8 @@ __all__ = [
     "corner_figure",
     "anticipation_slider_figure",
     "joint_profiles_figure",
+    "joint_space_series",
+    "joint_space_figure",
 ]
 
 _VIA_COLOUR = "#E69F00"
@@ -98,21 +104,201 @@ def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = N
                          shapes=shapes)
 
 
-def _waypoint_traces(traj, dims=3, showlegend=True, text=True):
+#: font size (px) of the waypoint labels, and the label boxes' place around a marker of size 10, measured in
+#: Chromium (px, screen y pointing down): the horizontal span of a label ``w`` px wide, the vertical span
+_LABEL_FONT = 12
+_LABEL_X = {"center": lambda w: (-w / 2, w / 2), "right": lambda w: (7.2, 7.2 + w), "left": lambda w: (-6.9 - w, -6.9)}
+_LABEL_Y = {"top": (-21.2, -7.2), "bottom": (5.2, 19.2), "middle": (-8.0, 6.0)}
+#: the label positions tried, in order of preference
+_LABEL_POSITIONS = ("top center", "bottom center", "top right", "top left", "bottom right", "bottom left",
+                    "middle right", "middle left")
+#: the drawing scales (px per m) a top view takes, from a phone-width page to a laptop screen
+_TOP_VIEW_SCALES = (300.0, 340.0, 450.0, 600.0, 800.0)
+
+
+def _label_box(position, x, y, width):
+    """The box ``(x0, y0, x1, y1)`` (screen px, y down) of a label ``width`` px wide placed at plotly's
+    ``textposition`` ``position`` around a marker at ``(x, y)``."""
+    vert, horiz = position.split()
+    x0, x1 = _LABEL_X[horiz](width)
+    y0, y1 = _LABEL_Y[vert]
+    return x + x0, y + y0, x + x1, y + y1
+
+
+def _boxes_overlap(a, b, pad=1.0):
+    return a[0] < b[2] + pad and b[0] < a[2] + pad and a[1] < b[3] + pad and b[1] < a[3] + pad
+
+
+def _box_hits_polyline(box, xy, pad=1.0):
+    """True when some piece of the polyline ``xy`` (m, 2) (screen px) passes through ``box`` (grown by ``pad``):
+    Liang-Barsky clipping of every piece at once."""
+    if len(xy) < 2:
+        return False
+    x0, y0, x1, y1 = box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad
+    a, d = xy[:-1], np.diff(xy, axis=0)
+    lo, hi = np.zeros(len(d)), np.ones(len(d))
+    edges = ((-d[:, 0], a[:, 0] - x0), (d[:, 0], x1 - a[:, 0]), (-d[:, 1], a[:, 1] - y0), (d[:, 1], y1 - a[:, 1]))
+    for p_, q_ in edges:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = q_ / p_
+        par = p_ == 0
+        lo = np.where(~par & (p_ < 0), np.maximum(lo, r), lo)
+        hi = np.where(~par & (p_ > 0), np.minimum(hi, r), hi)
+        out = par & (q_ < 0)
+        lo = np.where(out, 2.0, lo)
+    return bool(np.any(lo <= hi))
+
+
+def _place_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
+    """A ``textposition`` per label such that, at every drawing scale, no two labels overlap and none sits on a
+    curve to avoid, if such a choice exists (the least overlap otherwise).
+
+    ``views``: one dict per drawing scale with ``points`` (k, 2) the labelled markers in screen px (y down),
+    ``avoid`` a list of polylines (m, 2) in px the labels must not cover (the arc), ``curves`` polylines they
+    had better not cover (the path), and optionally ``markers`` (j, 2) other markers and ``forbid``
+    ``{index: positions}`` places a label may not take. Empty texts are not placed. The cost of a choice adds,
+    over the scales, ``weights``: a pair of overlapping labels, a label on a curve to avoid, on a marker or whose
+    centre is nearer (within a factor 1.25) to another point than to its own, on the path; plus a tenth per step
+    down the order of preference of :data:`_LABEL_POSITIONS`. The choice is made by simulated annealing
+    with a fixed seed (the same labels always get the same places), then polished label by label.
+    """
+    k = len(texts)
+    widths = [_text_width(t, _LABEL_FONT) for t in texts]
+    todo = [i for i in range(k) if texts[i]]
+    npos = len(_LABEL_POSITIONS)
+    w_label, w_avoid, w_marker, w_curve = weights
+    pts0 = np.asarray(views[0]["points"], float)
+    # coincident points (p0 and p11) share one label: neither is the other's neighbour
+    same = np.all(np.isclose(pts0[:, None, :], pts0[None, :, :]), axis=-1)
+
+    unary = np.zeros((k, npos))
+    boxes = []                        # boxes[v][i][a]
+    for v in views:
+        pts = np.asarray(v["points"], float)
+        extra = np.reshape(v.get("markers", np.zeros((0, 2))), (-1, 2))
+        per = []
+        for i in range(k):
+            per.append([_label_box(p_, pts[i, 0], pts[i, 1], widths[i]) for p_ in _LABEL_POSITIONS])
+            if i not in todo:
+                continue
+            others = np.r_[pts[[j for j in range(k) if not same[i, j]]], extra]
+            for a, box in enumerate(per[i]):
+                c = w_avoid * (_LABEL_POSITIONS[a] in v.get("forbid", {}).get(i, ()))
+                c += sum(w_avoid for line in v.get("avoid", ()) if _box_hits_polyline(box, line))
+                c += sum(w_curve for line in v.get("curves", ()) if _box_hits_polyline(box, line))
+                inside = ((others[:, 0] > box[0] - 5) & (others[:, 0] < box[2] + 5)
+                          & (others[:, 1] > box[1] - 5) & (others[:, 1] < box[3] + 5))
+                c += w_marker * int(inside.sum())
+                # a label (nearly) nearer to another point than to its own would seem to name that point
+                centre = np.array([(box[0] + box[2]) / 2, (box[1] + box[3]) / 2])
+                if len(others) and np.min(np.hypot(*(others - centre).T)) < 1.25 * np.hypot(*(centre - pts[i])):
+                    c += w_marker
+                unary[i, a] += c
+        boxes.append(per)
+    unary += 0.1 * np.arange(npos)
+    pair = np.zeros((k, npos, k, npos))
+    for i in todo:
+        for j in todo:
+            if j <= i:
+                continue
+            for per in boxes:
+                for a in range(npos):
+                    for b in range(npos):
+                        if _boxes_overlap(per[i][a], per[j][b]):
+                            pair[i, a, j, b] += w_label
+            pair[j, :, i, :] = pair[i, :, j, :].T
+
+    # the conflicts of each place, as short lists (most pairs of places never meet): plain Python is fast here
+    un = unary.tolist()
+    conflicts = [[[(j, b, float(pair[i, a, j, b])) for j in todo if j != i for b in range(npos) if pair[i, a, j, b]]
+                  for a in range(npos)] for i in range(k)]
+
+    def delta(state, i, a):
+        d = un[i][a] - un[i][state[i]]
+        for j, b, w in conflicts[i][a]:
+            if state[j] == b:
+                d += w
+        for j, b, w in conflicts[i][state[i]]:
+            if state[j] == b:
+                d -= w
+        return d
+
+    state = [0] * k
+    for i in todo:                                   # greedy start: the best place given the labels so far
+        state[i] = min(range(npos), key=lambda a: un[i][a] + sum(w for j, b, w in conflicts[i][a]
+                                                                  if j < i and state[j] == b))
+    if todo:
+        rng = np.random.default_rng(0)
+        steps = 2500 * len(todo)
+        picks = rng.integers(len(todo), size=steps).tolist()
+        places = rng.integers(npos, size=steps).tolist()
+        coins = rng.random(steps).tolist()
+        cost, best_cost, best = 0.0, 0.0, list(state)
+        for step in range(steps):
+            i, a = todo[picks[step]], places[step]
+            if a == state[i]:
+                continue
+            d = delta(state, i, a)
+            if d < 0 or coins[step] < math.exp(-d / (200.0 * 1e-4 ** (step / steps))):
+                state[i] = a
+                cost += d
+                if cost < best_cost - 1e-9:
+                    best, best_cost = list(state), cost
+        state = best
+        for _ in range(10):                          # polish: move one label at a time while that helps
+            moved = False
+            for i in todo:
+                a = min(range(npos), key=lambda b: delta(state, i, b))
+                if delta(state, i, a) < -1e-9:
+                    state[i], moved = a, True
+            if not moved:
+                break
+    return [_LABEL_POSITIONS[state[i]] if i in todo else "top center" for i in range(k)]
+
+
+def _merged_labels(traj, idx):
+    """The label of each waypoint in ``idx``; coincident waypoints are labelled once (``"p0 = p11"``) at the first
+    of them, the others get an empty label."""
+    labels = []
+    for i in idx:
+        same = [traj.labels[j] for j in range(len(traj.labels))
+                if np.linalg.norm(traj.waypoints[j] - traj.waypoints[i]) < 1e-9]
+        labels.append(" = ".join(same) if same[0] == traj.labels[i] else "")
+    return labels
+
+
+def _project(points, scene):
+    """Screen coordinates (px per unit of the normalised scene, y down) of ``points`` (k, 3) in a plotly 3-D
+    ``scene`` with manual aspect ratio, seen from its camera's eye (perspective about the centre)."""
+    lo, hi = scene["lo"], scene["hi"]
+    aspect = np.array(scene["aspect"])
+    P = (np.asarray(points, float) - (lo + hi) / 2) / np.where(hi > lo, hi - lo, 1.0) * aspect
+    eye = np.array(scene["eye"])
+    d = -eye / np.linalg.norm(eye)
+    right = np.cross(d, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, d)
+    depth = (P - eye) @ d
+    return np.c_[(P @ right) / depth, -(P @ up) / depth]
+
+
+def _waypoint_traces(traj, dims=3, showlegend=True, text=True, views=None):
+    """The stop points and the via points (two marker traces), labelled. ``views`` (see :func:`_place_labels`),
+    built by the caller in the same order as ``traj.waypoints``, decide where each label goes; without them
+    every label sits above its point."""
+    n = len(traj.labels)
+    labels = _merged_labels(traj, range(n))
+    positions = ["top center"] * n
+    if text and views is not None:
+        positions = _place_labels(views, labels)
     out = []
     for via, name, symbol, colour in ((False, "stop point", "circle", PALETTE["reference"]),
                                      (True, "via point", "diamond", _VIA_COLOUR)):
-        idx = [i for i in range(len(traj.labels)) if bool(traj.via[i]) == via]
-        # p11 = p0 in the reference: label coincident points once, e.g. "p0 = p11"
-        labels = []
-        for i in idx:
-            same = [traj.labels[j] for j in range(len(traj.labels))
-                    if np.linalg.norm(traj.waypoints[j] - traj.waypoints[i]) < 1e-9]
-            labels.append(" = ".join(same) if same[0] == traj.labels[i] else "")
+        idx = [i for i in range(n) if bool(traj.via[i]) == via]
         pts = traj.waypoints[idx]
-        common = dict(mode="markers+text" if text else "markers", name=name, text=labels,
-                      textposition="top center", showlegend=showlegend,
-                      hovertext=[traj.labels[i] for i in idx], hoverinfo="text")
+        common = dict(mode="markers+text" if text else "markers", name=name, text=[labels[i] for i in idx],
+                      textposition=[positions[i] for i in idx], textfont=dict(size=_LABEL_FONT),
+                      showlegend=showlegend, hovertext=[traj.labels[i] for i in idx], hoverinfo="text")
         if dims == 3:
             out.append(go.Scatter3d(x=_r(pts[:, 0]), y=_r(pts[:, 1]), z=_r(pts[:, 2]),
                                     marker=dict(size=5, symbol=symbol, color=colour), **common))
@@ -121,6 +307,55 @@ def _waypoint_traces(traj, dims=3, showlegend=True, text=True):
                                   marker=dict(size=10, symbol=symbol, color=colour,
                                               line=dict(width=1, color="white")), **common))
     return out
+
+
+def _top_views(traj, path_xy, arm_xy=None):
+    """The label-placement views of a top view (:func:`_place_labels`) at each of :data:`_TOP_VIEW_SCALES`:
+    the waypoints, the arcs to keep clear, the path and the arm."""
+    arcs = [traj.x[decimate(traj, 60, traj.segment_start[j], traj.segment_end[j]), :2]
+            for j, kind in enumerate(traj.segment_kinds) if kind == "arc"]
+    flip = np.array([1.0, -1.0])
+    views = []
+    for s in _TOP_VIEW_SCALES:
+        curves = [np.asarray(path_xy, float) * flip * s]
+        if arm_xy is not None:
+            curves.append(np.asarray(arm_xy, float) * flip * s)
+        views.append(dict(points=traj.waypoints[:, :2] * flip * s, avoid=[a * flip * s for a in arcs],
+                          curves=curves))
+    return views
+
+
+#: px per unit of :func:`_project`'s screen coordinates in the 3-D path figure (plotly sizes a 3-D scene by the
+#: figure's height, so the scale is the same on a phone-width page and a laptop screen: 413 px measured in
+#: Chromium on the reference path)
+_SCENE_SCALES = (380.0, 415.0, 450.0)
+#: the 3-D path figure's aspect ratio and camera: narrow enough to fit a phone-width page
+_SCENE_ASPECT = (1.3, 0.7, 0.7)
+_SCENE_EYE = (0.9, -2.3, 1.0)
+
+
+def _scene_box(traj, path_xyz, pad=0.06):
+    """The axis ranges ``(lo, hi)`` (3,) of the 3-D path figure: the path and the waypoints with ``pad`` of each
+    span more on either side, so that no point sits on the box (plotly hides a label drawn outside it)."""
+    every = np.r_[path_xyz, traj.waypoints]
+    lo, hi = every.min(axis=0), every.max(axis=0)
+    span = np.maximum(hi - lo, 1e-3)
+    return lo - pad * span, hi + pad * span
+
+
+def _scene_views(traj, path_xyz, box, aspect, eye):
+    """The label-placement views (:func:`_place_labels`) of the 3-D path figure: the waypoints, the arcs and the
+    path projected on the screen as the figure's camera sees them."""
+    scene = dict(lo=box[0], hi=box[1], aspect=aspect, eye=eye)
+    pts = _project(traj.waypoints, scene)
+    path = _project(path_xyz, scene)
+    arcs = [_project(traj.x[decimate(traj, 60, traj.segment_start[j], traj.segment_end[j]), :3], scene)
+            for j, kind in enumerate(traj.segment_kinds) if kind == "arc"]
+    # plotly does not draw a label below a point at the bottom of the box (the lowest tenth of it)
+    z = traj.waypoints[:, 2]
+    low = {int(i): {p_ for p_ in _LABEL_POSITIONS if p_.startswith("bottom")}
+           for i in np.flatnonzero(z <= z.min() + 0.1 * (z.max() - z.min()))}
+    return [dict(points=pts * s, avoid=[a * s for a in arcs], curves=[path * s], forbid=low) for s in _SCENE_SCALES]
 
 
 def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 520) -> go.Figure:
@@ -141,12 +376,16 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
             fig.add_trace(go.Scatter3d(x=_r(traj.x[ka, 0]), y=_r(traj.x[ka, 1]), z=_r(traj.x[ka, 2]), mode="lines",
                                        name=f"arc {traj.segment_labels[j]}",
                                        line=dict(color=_ARC_COLOUR, width=7)))
-    for tr in _waypoint_traces(traj, 3):
+    aspect, eye = _SCENE_ASPECT, _SCENE_EYE
+    box = _scene_box(traj, x[:, :3])
+    coarse = traj.x[decimate(traj, 300), :3]      # labels are placed against a coarser copy of the path
+    for tr in _waypoint_traces(traj, 3, views=_scene_views(traj, coarse, box, aspect, eye)):
         fig.add_trace(tr)
+    axes = {f"{c}axis": dict(title_text=f"{c} (m)", range=[float(box[0][i]), float(box[1][i])])
+            for i, c in enumerate("xyz")}
     return finish_layout(fig, title or "The reference path in the base frame", height,
-                         scene=dict(xaxis_title="x (m)", yaxis_title="y (m)", zaxis_title="z (m)", aspectmode="manual",
-                                    aspectratio=dict(x=1.7, y=0.8, z=0.8),
-                                    camera=dict(eye=dict(x=0.7, y=-1.8, z=0.8))))
+                         scene=dict(**axes, aspectmode="manual", aspectratio=dict(zip("xyz", aspect)),
+                                    camera=dict(eye=dict(zip("xyz", eye)))))
 
 
 def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
@@ -158,7 +397,11 @@ def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     traj = _check(traj)
     k = decimate(traj, points)
-    wp = [dict(x=t.x, y=t.y, text=t.text, hovertext=t.hovertext) for t in _waypoint_traces(traj, 2)]
+    arm = top_view_arm(traj.q0, traj.params)
+    # labels are placed against a coarser copy of the path: decimate keeps every corner, and a line is a line
+    views = _top_views(traj, traj.x[decimate(traj, 300), :2], np.c_[arm.x, arm.y])
+    wp = [dict(x=t.x, y=t.y, text=t.text, textposition=t.textposition, hovertext=t.hovertext)
+          for t in _waypoint_traces(traj, 2, views=views)]
     return dict(path=(_r(traj.x[k, 0]), _r(traj.x[k, 1])), stop=wp[0], via=wp[1])
 
 
@@ -176,8 +419,8 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
         fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at t = 0", opacity=0.5))
     fig.add_trace(go.Scatter(x=series["path"][0], y=series["path"][1], mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
-    for tr in _waypoint_traces(traj, 2):
-        fig.add_trace(tr)
+    for tr, data in zip(_waypoint_traces(traj, 2), (series["stop"], series["via"])):
+        fig.add_trace(tr.update(textposition=data["textposition"]))
     finish_layout(fig, title or "The path seen from above", height)
     fig.update_xaxes(title_text="x (m)")
     fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1)
@@ -397,3 +640,80 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
     fig.update_yaxes(rangemode="tozero", row=3, col=1)
     _band_legend(fig)
     return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=segment_shapes(traj))
+
+
+#: colour of the joint-space trajectory's tool path and its knots
+_JOINT_COLOUR = PALETTE["inverse"]
+
+
+def joint_space_series(traj: Trajectory, extra: int = 0, kind: str = "cubic", points: int = 600) -> dict:
+    """The data :func:`joint_space_figure` draws for ``extra`` knots per segment: the joint-space counterpart's
+    tool path (``x``, ``y``, m) and knots, and the distance from the operational path against time (``t`` s,
+    ``d`` mm), decimated to about ``points`` samples keeping the knots and the farthest sample; ``max_mm`` the
+    largest distance (over every sample), ``max_t`` when, ``knots`` their number.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    traj = _check(traj)
+    jt = joint_counterpart(traj, kind, extra=extra)
+    d = path_deviation(jt, traj)
+    x = jt.tool()[0]
+    k_max = int(np.argmax(d))
+    knots = np.round(jt.times / jt.dt).astype(int)
+    k = np.unique(np.r_[np.linspace(0, jt.t.size - 1, points).round().astype(int), knots, k_max])
+    return dict(x=_r(x[k, 0]), y=_r(x[k, 1]), knot_x=_r(x[knots, 0]), knot_y=_r(x[knots, 1]), t=_r(jt.t[k], 4),
+                d=_r(1000 * d[k], 4), max_mm=float(1000 * d[k_max]), max_t=float(jt.t[k_max]), knots=len(knots))
+
+
+def joint_space_figure(traj: Trajectory, extras=(0, 1, 3, 7, 15), kind: str = "cubic", points: int = 600,
+                       title: str | None = None, height: int = 560) -> go.Figure:
+    """Kernel-free slider figure: the tool path of the joint-space trajectory through the waypoints of ``traj``
+    (:func:`~scara.trajectory.joint_counterpart`, cubic or quintic) against the operational path (top, seen from
+    above), and the distance between the two against time (bottom), as the number of extra knots per segment
+    takes each of ``extras`` (the slider; 2 to 10 values from 0 to 1000). The title gives the largest distance.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), so at most 100 000 samples per curve
+    in all the steps together (``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises
+    :class:`ScaraError` before any work."""
+    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    traj = _check(traj)
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise ScaraError(f"kind = {kind!r} must be one of {sorted(KINDS)}")
+    if isinstance(extras, (str, bytes)) or np.ndim(extras) != 1:
+        raise ScaraError(f"extras must be a sequence of knot counts (whole numbers 0 to 1000), got {extras!r}")
+    extras = [check_count(e, "extras entry", 1000, minimum=0, what="knots per segment") for e in extras]
+    if not 2 <= len(extras) <= 10:
+        raise ScaraError(f"give between 2 and 10 values in extras, got {len(extras)}")
+    data = [joint_space_series(traj, e, kind, points) for e in extras]
+    heading = title or kind.capitalize()
+
+    def head(s):
+        return f"{heading}, {s['knots']} knots:<br>the tool strays up to {s['max_mm']:.1f} mm"
+
+    # what each step draws, as JSON lists: short decimals keep the page light (10 um, 1 ms, 1 um); the figure
+    # opens on the first step, with the very same numbers
+    drawn = [dict(x=[as_list(s["x"], 5), as_list(s["knot_x"], 5), as_list(s["t"], 3)],
+                  y=[as_list(s["y"], 5), as_list(s["knot_y"], 5), as_list(s["d"], 3)]) for s in data]
+    fig = make_subplots(rows=2, cols=1, row_heights=[0.45, 0.55], vertical_spacing=0.16)
+    k = decimate(traj, points)
+    fig.add_trace(go.Scatter(x=_r(traj.x[k, 0]), y=_r(traj.x[k, 1]), mode="lines", name="operational path",
+                             line=dict(color=PALETTE["reference"], width=2)), row=1, col=1)
+    d0 = drawn[0]
+    fig.add_trace(go.Scatter(x=d0["x"][0], y=d0["y"][0], mode="lines", name="joint-space tool path",
+                             line=dict(color=_JOINT_COLOUR, width=2, dash="dash")), row=1, col=1)
+    fig.add_trace(go.Scatter(x=d0["x"][1], y=d0["y"][1], mode="markers", name="knots",
+                             marker=dict(color=_JOINT_COLOUR, size=6, symbol="circle-open", line=dict(width=1.5))),
+                  row=1, col=1)
+    fig.add_trace(go.Scatter(x=d0["x"][2], y=d0["y"][2], mode="lines", name="joint-space tool path", showlegend=False,
+                             line=dict(color=_JOINT_COLOUR, width=1.6, dash="dash")), row=2, col=1)
+    steps = [dict(label=f"{e}", method="update", args=[dr, {"title.text": head(s)}, [1, 2, 3]])
+             for e, s, dr in zip(extras, data, drawn)]
+    s0 = data[0]
+    finish_layout(fig, head(s0), height, sliders=[slider(steps, "extra knots per segment: ", pad_top=50)])
+    fig.update_xaxes(title_text="x (m)", constrain="domain", row=1, col=1)
+    fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1, row=1, col=1)
+    fig.update_xaxes(title_text="t (s)", row=2, col=1)
+    fig.update_yaxes(title_text="distance (mm)", rangemode="tozero", row=2, col=1)
+    fig.update_layout(margin=dict(b=110))
+    return fig
