@@ -3,7 +3,8 @@ settings).
 
 - A hypothesis profile with no deadline (the first call of a compiled kernel compiles it) and a fixed seed of
   examples per test, so CI runs are repeatable in time.
-- The chapter 3 reference trajectory and the chapter 6 runs, computed once per session (session-scoped fixtures)
+- The chapter 3 reference trajectory and the chapter 6 runs (the comparison table's four and the
+  independent-joint controller's), computed once per session (session-scoped fixtures)
   and shared by test_trajectory_*.py and test_control_*.py.
 - At the end of the run, the largest difference met by each independent check (``_largest.record``).
 
@@ -67,6 +68,22 @@ def runs(traj, jref):
     for name, c in ctrls.items():
         out[name] = (c, simulate(c, traj, P5, joint_reference=jref if c.reference_kind == "joint" else None))
     return out
+
+
+@pytest.fixture(scope="session")
+def independent_runs(traj, jref):
+    """The independent-joint runs of chapter 6, payload 5 kg: PID and PD with the stated bounds, and PID with the
+    quill's force bounded at 155 N (5 % above the 147 N its weight and the payload's need), with and without
+    anti-windup."""
+    from scara import IndependentJointController, simulate
+
+    from _control_shared import P5
+
+    tight = (200.0, 200.0, 155.0, 50.0)
+    ctrls = {"pid": IndependentJointController(), "pd": IndependentJointController(integral=False),
+             "saturated": IndependentJointController(tau_max=tight),
+             "windup": IndependentJointController(tau_max=tight, anti_windup=False)}
+    return {name: (c, simulate(c, traj, P5, joint_reference=jref)) for name, c in ctrls.items()}
 
 
 # --------------------------------------------------------------------------------------------------

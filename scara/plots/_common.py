@@ -31,6 +31,8 @@ PALETTE = {
     "operational": "#009E73",
     "operational_noint": "#D55E00",
     "pd_gravity": "#999999",
+    "independent": "#0072B2",
+    "independent_pd": "#CC79A7",
     "velocity": "#0072B2",
     "force": "#D55E00",
     "arm": "#4D4D4D",
@@ -62,10 +64,13 @@ CONTROLLER_LABELS = {
     "operational": "operational ID + integral",
     "operational_noint": "operational ID, no integral",
     "pd_gravity": "PD + gravity",
+    "independent": "independent joint PID",
+    "independent_pd": "independent joint PD",
 }
 #: one dash style per controller (colours: ``PALETTE``), so that the curves stay apart in greyscale
 CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot", "operational_noint": "dashdot",
-                     "pd_gravity": "longdash"}
+                     "pd_gravity": "longdash", "independent": "longdashdot",
+                     "independent_pd": "8px,3px,2px,3px,2px,3px"}
 
 
 def run_name(r) -> str:

@@ -1,7 +1,8 @@
 """Figures of chapter 6 (control with an unknown payload): joint motion, operational errors and torques of each
-controller, the adaptive payload estimate, the robust term and its boundary layer (with a static slider over
-``epsilon``), the steady-state error with and without integral action, the error against the payload mass, and
-the live panel's summary figure.
+controller, the independent-joint controller's saturation and anti-windup, the adaptive payload estimate, the
+robust term and its boundary layer (with a static slider over ``epsilon``), the steady-state error with and
+without integral action, the error against the payload mass, a static slider over any set of figures, and the
+live panel's summary figure.
 
 Builders take :class:`scara.simulate.SimulationResult` objects (a dict ``{label: result}`` where several are
 compared) and compute nothing but what they draw. Long runs are thinned to about ``points`` samples per trace;
@@ -18,17 +19,19 @@ from plotly.subplots import make_subplots
 
 from ..errors import ScaraError
 from ._common import (
-    AXIS_COLOURS, CONTROLLER_DASHES, CONTROLLER_LABELS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, PALETTE, f32,
+    AXIS_COLOURS, CONTROLLER_DASHES, CONTROLLER_LABELS, DASHES, JOINT_COLOURS, JOINT_NAMES, JOINT_UNITS, LOG_FLOOR,
+    PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, check_count
 from .layout import finish_layout, stacked_axes
 
+
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
-    "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "tuning_figure", "tuning_series",
-    "tuning_signal", "tuning_title",
+    "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "saturation_figure",
+    "figure_slider", "tuning_figure", "tuning_series", "tuning_signal", "tuning_title",
 ]
 
 _COMPONENTS = ("x", "y", "z", "φ")
@@ -123,44 +126,90 @@ def operational_error_figure(results, points: int = 600, title: str | None = Non
     return stacked_axes(fig, ("e_x, e_y, e_z (mm)<br>e_φ (mrad)", "‖e_p‖ (m)"), log=(2,))
 
 
-def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int = 460,
-                      settle: float | None = 1.0) -> go.Figure:
+def error_norm_figure(results, points: int = 1000, title: str | None = None, height: int | None = None,
+                      settle: float | None = 1.0, groups: dict | None = None) -> go.Figure:
     """The norm of the position error ``||p_d - p_e||`` (m, log scale, envelope) of several runs together, each
     in its controller's colour and dash style; a dotted line marks the end of the first ``settle`` seconds that
     the comparison table leaves out.
+
+    ``groups`` (``{menu label: [labels of results]}``, optional): a dropdown shows one group of runs at a time
+    (a run may belong to several groups), for more runs than one legend can name on a phone-width page.
+    ``height`` (px) defaults to 460, or 560 with a dropdown (which takes room above the plot).
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
+    if groups is not None:
+        if not isinstance(groups, dict) or not groups:
+            raise ScaraError(f"groups must be a non-empty dict {{menu label: [run labels]}}, got {groups!r:.80}")
+        for name, members in groups.items():
+            unknown = [m for m in members if m not in runs] if isinstance(members, (list, tuple)) else members
+            if unknown or not members:
+                raise ScaraError(f"groups[{name!r}] must list labels of the runs {list(runs)}; unknown: {unknown}")
+    head = title or "Position error of each controller<br>(5 kg payload, unknown to them)"
+    height = (560 if groups else 460) if height is None else height
     fig = go.Figure()
-    for label, r in runs.items():
-        tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
-        fig.add_trace(_line(tt, yy, label, run_colour(r), width=2, dash=run_dash(r)))
+    members = groups or {"": list(runs)}
+    trace_groups, menu = [], []
+    for name, labels in members.items():
+        start = len(fig.data)
+        for label in labels:
+            r = runs[label]
+            tt, yy = envelope(r.t, np.linalg.norm(r.e[:, :3], axis=1), points)
+            fig.add_trace(_line(tt, yy, label, run_colour(r), width=2, dash=run_dash(r)))
+        trace_groups.append(list(range(start, len(fig.data))))
+        menu.append((name, f"{head}<br>{name}"))
     if settle:
         fig.add_vline(x=settle, line=dict(color="#777777", dash="dot", width=1))
-    finish_layout(fig, title or "Position error of each controller<br>(5 kg payload, unknown to them)", height)
+    if groups:
+        finish_layout(fig, menu[0][1], height, groups=trace_groups, menu=menu)
+    else:
+        finish_layout(fig, head, height)
     fig.update_yaxes(type="log", exponentformat="power", title_text="‖p_d − p_e‖ (m)")
     fig.update_xaxes(title_text="t (s)")
     return fig
 
 
-def torque_figure(results, points: int = 500, title: str | None = None, height: int = 760) -> go.Figure:
-    """The torques and the quill's force of several runs overlaid, one panel per joint stacked on a shared time
-    axis (N m, N m, N, N m); each controller in its colour and dash style.
+def torque_figure(results, points: int = 500, title: str | None = None, height: int = 760, reference=None,
+                  window=None) -> go.Figure:
+    """The torques and the quill's force of several runs, one panel per joint stacked on a shared time axis
+    (N m, N m, N, N m); each controller in its colour and dash style.
 
-    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
-    raises :class:`ScaraError` before any work."""
+    ``reference`` (N, 4), optional: a torque sampled like the runs (the torque the true arm needs along the
+    reference, say); each panel then shows the difference ``tau - reference``, which magnifies how the controllers
+    differ where their torques would lie on top of each other. ``window = (t0, t1)`` (s), optional: only that
+    interval, at full sampling (at most ``MAX_POINTS`` samples), e.g. around a corner of the path where the
+    reference acceleration jumps; without it the whole run, thinned to ``points`` samples.
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), and as many samples in the window; a
+    value outside, or not a whole number, raises :class:`ScaraError` before any work."""
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
     runs = _as_dict(results)
-    names = ("τ1 (N m)", "τ2 (N m)", "f3 (N)", "τ4 (N m)")
+    ref = None
+    if reference is not None:
+        ref = np.asarray(reference, dtype=float)
+        for label, r in runs.items():
+            if ref.shape != r.tau.shape:
+                raise ScaraError(f"reference has shape {ref.shape}, the run {label!r} has {r.tau.shape}: one torque "
+                                 f"row per sample of the runs")
+    units = ("N m", "N m", "N", "N m")
+    sym = ("τ1", "τ2", "f3", "τ4")
+    names = tuple(f"{s} − {s}_d ({u})" if ref is not None else f"{s} ({u})" for s, u in zip(sym, units))
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04)
     for label, r in runs.items():
-        idx = thin(len(r.t), points)
+        if window is None:
+            idx = thin(len(r.t), points)
+        else:
+            idx = np.flatnonzero((r.t >= window[0] - 1e-12) & (r.t <= window[1] + 1e-12))
+            check_count(len(idx), f"the window {tuple(window)} s", MAX_POINTS, minimum=2, what="samples per curve")
+        tau = r.tau[idx] - (ref[idx] if ref is not None else 0.0)
         for j in range(4):
-            fig.add_trace(_line(r.t[idx], r.tau[idx, j], label, run_colour(r), width=1.6, legendgroup=label,
+            fig.add_trace(_line(r.t[idx], tau[:, j], label, run_colour(r), width=1.8, legendgroup=label,
                                 showlegend=j == 0, dash=run_dash(r)), row=j + 1, col=1)
-    finish_layout(fig, title or "Joint torques and the quill's force", height)
+    head = title or ("Torque minus the torque the arm needs" if ref is not None
+                     else "Joint torques and the quill's force")
+    finish_layout(fig, head, height)
     return stacked_axes(fig, names)
 
 
@@ -230,17 +279,23 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
 
 
 def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0, 40.15), title: str | None = None,
-                                 height: int = 640) -> go.Figure:
+                                 height: int = 640, notes: dict | None = None) -> go.Figure:
     """Static slider over the boundary-layer width: for each ``{epsilon: result}`` of a robust run, the torques
     of the revolute joints (top, N m; the quill's force hardly chatters) and ``||z||`` against ``epsilon``
     (bottom, log) over ``window`` at full sampling, so that the sample-to-sample switching below ``bound`` (the
-    sampled layer's stability limit) is visible. The title (two lines) says whether the step chatters.
+    sampled layer's stability limit) is visible. The title (two lines) says whether the step chatters; ``notes``
+    (``{epsilon: text}``, optional, at most 45 characters each) adds a third line to the steps it names, so that a
+    static page carries the run's figures (its sag at rest, say).
 
     Limits: at most 121 runs (``MAX_STEPS``) and 100 000 samples in the window over all of them
     (``MAX_SLIDER_SAMPLES``); more raises :class:`ScaraError` before any work."""
     if not isinstance(runs, dict) or not runs:
         raise ScaraError(f"runs must be a non-empty dict {{epsilon: result}}, got {runs!r:.80}")
     check_count(len(runs), "len(runs)", MAX_STEPS, what="runs (slider steps)")
+    notes = dict(notes or {})
+    unknown = [e for e in notes if e not in runs]
+    if unknown:
+        raise ScaraError(f"notes name widths without a run: {unknown}; the runs have {sorted(runs)}")
     in_window = sum(int(np.count_nonzero((r.t >= window[0]) & (r.t <= window[1]))) for r in runs.values())
     check_count(in_window, f"the window {tuple(window)} s", MAX_SLIDER_SAMPLES, minimum=0,
                 what="samples over all the runs")
@@ -261,9 +316,11 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
         fig.add_trace(_line([t[0], t[-1]], [eps, eps], "layer ε", PALETTE["reference"], dash="dot", width=1.4,
                             visible=n == 0), row=2, col=1)
 
+
     def head(eps):
         tag = "chatters" if eps <= bound else "smooth"
-        return f"{title or 'Robust control, boundary layer'}<br>ε = {eps:.3g}: {tag} (limit {bound:.3g})"
+        note = f"<br>{notes[eps]}" if eps in notes else ""
+        return f"{title or 'Robust control, boundary layer'}<br>ε = {eps:.3g}: {tag} (limit {bound:.3g}){note}"
 
     steps = [dict(label=f"{eps:.3g}", method="update",
                   args=[{"visible": [per * n <= i < per * (n + 1) for i in range(per * len(eps_list))]},
@@ -301,21 +358,130 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
     return stacked_axes(fig, ("e_z (mm)", "K_I s_z (m/s²)"))
 
 
-def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int = 480,
-                         ylabel: str = "max ‖p_d − p_e‖ after 1 s (m)") -> go.Figure:
+def saturation_figure(runs: dict, joint: int = 2, horizon: float = 1.5, limit: float | None = None,
+                      title: str | None = None, height: int = 700) -> go.Figure:
+    """Actuator saturation and anti-windup on one joint (default the quill) during the first ``horizon`` seconds
+    of several runs ``{label: result}`` of :class:`~scara.control.IndependentJointController`, at full sampling:
+    the joint's torque (force) against the bound ``limit`` (top, dotted), its error ``q_d - q`` (middle, mm or
+    mrad) and the integral action ``K_I chi`` (bottom, N m or N). Runs of one controller share its colour in the
+    other figures; here each run has its own colour and dash, in the order given.
+
+    Limits: at most 8 runs and 10 000 samples per curve in the horizon (``MAX_POINTS``); more raises
+    :class:`ScaraError` before any work."""
+    from ..errors import check_index, check_positive  # noqa: PLC0415
+
+    if not isinstance(runs, dict) or not runs:
+        raise ScaraError(f"runs must be a non-empty dict {{label: result}}, got {runs!r:.80}")
+    check_count(len(runs), "len(runs)", 8, what="runs")
+    joint = check_index(joint, "joint", 4)
+    horizon = check_positive(horizon, "horizon")
+    signal = f"integral_action_{joint + 1}"
+    for label, r in runs.items():
+        if signal not in getattr(r, "signals", {}):
+            raise ScaraError(f"the run {label!r} carries no {signal}: it is not a run of the independent-joint "
+                             f"controller")
+        n = int(np.count_nonzero(r.t <= horizon + 1e-12))
+        check_count(n, f"horizon = {horizon:g} s", MAX_POINTS, minimum=2, what="samples per curve")
+    unit = JOINT_UNITS[joint]
+    err_unit = "mm" if joint == 2 else "mrad"
+    sym = JOINT_NAMES[joint]
+    force = "f3" if joint == 2 else f"τ{joint + 1}"
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06)
+    for n, (label, r) in enumerate(runs.items()):
+        sel = r.t <= horizon + 1e-12
+        t = r.t[sel]
+        style = dict(colour=AXIS_COLOURS[n % 4], dash=DASHES[n % 4], width=2.0, legendgroup=label)
+        fig.add_trace(_line(t, r.tau[sel, joint], label, **style), row=1, col=1)
+        fig.add_trace(_line(t, 1e3 * (r.q_d[sel, joint] - r.q[sel, joint]), f"error · {label}", showlegend=False,
+                            **style), row=2, col=1)
+        fig.add_trace(_line(t, r.signals[signal][sel], f"integral · {label}", showlegend=False, **style),
+                      row=3, col=1)
+    if limit is not None:
+        # the bound on the side(s) the torques come near (within 5 % of it)
+        limit = check_positive(limit, "limit")
+        lo = float(min(r.tau[r.t <= horizon + 1e-12, joint].min() for r in runs.values()))
+        hi = float(max(r.tau[r.t <= horizon + 1e-12, joint].max() for r in runs.values()))
+        for sign in (1.0, -1.0):
+            if lo - 0.05 * limit <= sign * limit <= hi + 0.05 * limit:
+                fig.add_trace(_line([0.0, horizon], [sign * limit] * 2, f"bound ±{limit:g} {unit}",
+                                    PALETTE["reference"], dash="dot", width=1.3, showlegend=True), row=1, col=1)
+    finish_layout(fig, title or f"Saturation and anti-windup, {sym}", height)
+    return stacked_axes(fig, (f"{force} ({unit})", f"{sym}_d − {sym} ({err_unit})", f"K_I χ ({unit})"))
+
+
+def figure_slider(figures: dict, prefix: str, active: int = 0) -> go.Figure:
+    """One figure with a static slider over several figures of the same build (``{label: figure}``, e.g. one
+    :func:`payload_estimate_figure` per adaptation weight): the traces of every figure, one figure's shown at a
+    time with its own title. Works on a static page (plotly slider steps, no kernel). The figures must share
+    their subplot grid and axes (the first one's layout is kept); axes keep autoranging on the visible traces.
+
+    Limits: at most 121 figures (``MAX_STEPS``) and 100 000 samples over all their traces
+    (``MAX_SLIDER_SAMPLES``); more raises :class:`ScaraError` before any work."""
+    if not isinstance(figures, dict) or not figures:
+        raise ScaraError(f"figures must be a non-empty dict {{label: figure}}, got {figures!r:.80}")
+    check_count(len(figures), "len(figures)", MAX_STEPS, what="figures (slider steps)")
+    figs = list(figures.values())
+    if not all(isinstance(f, go.Figure) for f in figs):
+        raise ScaraError("every value of figures must be a plotly Figure")
+    samples = sum(len(tr.x) if tr.x is not None else 0 for f in figs for tr in f.data)
+    check_count(samples, "the samples of all the figures", MAX_SLIDER_SAMPLES, minimum=0, what="samples")
+    out = go.Figure(layout=figs[0].layout)
+    counts = []
+    for n, f in enumerate(figs):
+        counts.append(len(f.data))
+        for tr in f.data:
+            tr = go.Figure(data=[tr]).data[0]
+            tr.visible = n == active
+            out.add_trace(tr)
+    starts = np.cumsum([0] + counts)
+    total = int(starts[-1])
+    steps = [dict(label=str(label), method="update",
+                  args=[{"visible": [int(starts[n]) <= i < int(starts[n + 1]) for i in range(total)]},
+                        {"title.text": f.layout.title.text}])
+             for n, (label, f) in enumerate(figures.items())]
+    out.update_layout(title_text=figs[active].layout.title.text, sliders=[slider(steps, prefix, active=active)],
+                      margin=dict(b=max(int(figs[0].layout.margin.b or 0), 120)))
+    return out
+
+
+def payload_sweep_figure(masses, errors: dict, title: str | None = None, height: int | None = None,
+                         ylabel: str = "max ‖p_d − p_e‖ after 1 s (m)", groups: dict | None = None) -> go.Figure:
     """An error measure (log scale) against the payload mass (kg) for each controller: ``errors`` maps a
-    controller name (a key of ``PALETTE``) to one value per mass; colour, dash and marker name the controller."""
+    controller name (a key of ``PALETTE``) to one value per mass; colour, dash and marker name the controller.
+
+    ``groups`` (``{menu label: [controller names]}``, optional): a dropdown shows one group at a time, for more
+    controllers than one legend can name on a phone-width page; ``height`` (px) defaults to 480, or 560 with it."""
     masses = np.asarray(masses, dtype=float)
+    if groups is not None:
+        if not isinstance(groups, dict) or not groups:
+            raise ScaraError(f"groups must be a non-empty dict {{menu label: [controller names]}}, "
+                             f"got {groups!r:.80}")
+        for name, members in groups.items():
+            unknown = [m for m in members if m not in errors] if isinstance(members, (list, tuple)) else members
+            if unknown or not members:
+                raise ScaraError(f"groups[{name!r}] must list names of errors {list(errors)}; unknown: {unknown}")
+    for name, vals in errors.items():
+        if np.asarray(vals, dtype=float).shape != masses.shape:
+            raise ScaraError(f"errors[{name!r}] has {np.size(vals)} values for {masses.size} masses")
+    symbols = ("circle", "square", "diamond", "triangle-up", "x", "star")
+    marker = {name: symbols[n % len(symbols)] for n, name in enumerate(errors)}
+    head = title or "Tracking error against the payload"
+    height = (560 if groups else 480) if height is None else height
     fig = go.Figure()
-    for n, (name, vals) in enumerate(errors.items()):
-        vals = np.asarray(vals, dtype=float)
-        if vals.shape != masses.shape:
-            raise ScaraError(f"errors[{name!r}] has {vals.size} values for {masses.size} masses")
-        fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, LOG_FLOOR), mode="lines+markers",
-                                 name=run_label(name),
-                                 marker=dict(size=8, symbol=("circle", "square", "diamond", "triangle-up")[n % 4]),
-                                 line=dict(color=run_colour(name), width=2, dash=run_dash(name))))
-    finish_layout(fig, title or "Tracking error against the payload", height)
+    trace_groups, menu = [], []
+    for label, names in (groups or {"": list(errors)}).items():
+        start = len(fig.data)
+        for name in names:
+            vals = np.asarray(errors[name], dtype=float)
+            fig.add_trace(go.Scatter(x=masses, y=np.maximum(vals, LOG_FLOOR), mode="lines+markers",
+                                     name=run_label(name), marker=dict(size=8, symbol=marker[name]),
+                                     line=dict(color=run_colour(name), width=2, dash=run_dash(name))))
+        trace_groups.append(list(range(start, len(fig.data))))
+        menu.append((label, f"{head}<br>{label}"))
+    if groups:
+        finish_layout(fig, menu[0][1], height, groups=trace_groups, menu=menu)
+    else:
+        finish_layout(fig, head, height)
     fig.update_yaxes(type="log", exponentformat="power", title_text=ylabel)
     fig.update_xaxes(title_text="payload m_L (kg)")
     return fig

@@ -1,6 +1,6 @@
-"""Live tuning panel of chapter 6: choose a controller, move its gains, the robust term's ``rho`` and
-``epsilon``, the adaptation weight ``K_pi``, the integral gain ``K_I`` and the true payload; the whole 70 s run
-is re-simulated (about 0.1 s) and redrawn at once. Jupyter only."""
+"""Live tuning panel of chapter 6: choose a controller, move its gains, the independent-joint pole ``omega``,
+the robust term's ``rho`` and ``epsilon``, the adaptation weight ``K_pi``, the integral gain ``K_I`` and the true
+payload; the whole 70 s run is re-simulated (about 0.1 s) and redrawn at once. Jupyter only."""
 from __future__ import annotations
 
 import re
@@ -8,7 +8,9 @@ import re
 import ipywidgets as ipw
 import numpy as np
 
-from ..control import AdaptiveController, OperationalSpaceController, RobustController, control_summary
+from ..control import (
+    AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController, control_summary,
+)
 from ..kinematics import _params
 from ..plots._common import MAX_POINTS, check_count, run_colour, run_label
 from ..plots.control import tuning_figure, tuning_series, tuning_signal, tuning_title
@@ -16,13 +18,15 @@ from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value, t
 
 __all__ = ["control_panel"]
 
-_CONTROLLERS = ("robust", "adaptive (Slotine-Li)", "operational ID + integral", "operational ID, no integral")
+_CONTROLLERS = ("robust", "adaptive (Slotine-Li)", "operational ID + integral", "operational ID, no integral",
+                "independent joint PID")
 #: which controls each controller reads (the others are greyed out)
 _USES = {
     "robust": {"K_P", "K_D", "Lambda", "rho", "epsilon"},
     "adaptive (Slotine-Li)": {"Lambda", "K_D_scale", "K_pi"},
     "operational ID + integral": {"K_P", "K_D", "K_I"},
     "operational ID, no integral": {"K_P", "K_D"},
+    "independent joint PID": {"omega"},
 }
 
 
@@ -31,8 +35,10 @@ def _log(value, lo, hi, desc, fmt=".3g"):
                               description=desc, readout_format=fmt, continuous_update=False, style=LABEL_STYLE)
 
 
-def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I):
+def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega=30.0):
     """The controller the panel's settings describe (the panel's own mapping, exposed for tests)."""
+    if controller.startswith("independent"):
+        return IndependentJointController(omega=omega)
     if controller == "robust":
         return RobustController(K_P=K_P, K_D=K_D, rho=rho, epsilon=epsilon, Lambda=Lambda)
     if controller.startswith("adaptive"):
@@ -42,7 +48,8 @@ def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, 
 
 
 def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) -> LivePanel:
-    """Controller dropdown and sliders: ``K_P`` (1/s^2) and ``K_D`` (1/s) of the robust and operational laws,
+    """Controller dropdown and sliders: the pole ``omega`` (rad/s) of the independent-joint PID (the triple pole of
+    every joint's nominal loop), ``K_P`` (1/s^2) and ``K_D`` (1/s) of the robust and operational laws,
     ``Lambda`` (1/s) of the robust and adaptive laws, ``rho`` (m/s^2) and ``epsilon`` of the robust term, a scale of
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
     lumped mass ``m3``, ``K_I`` (1/s^3), and the true payload (kg) of the plant (the controllers never know it).
@@ -74,6 +81,7 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
         "K_D_scale": _log(1.0, 0.05, 20.0, "adaptive K_D (× book)", ".2f"),
         "K_pi": _log(0.01, 1e-5, 10.0, "K_π (weight of m3)", ".2e"),
         "K_I": _log(8000.0, 10.0, 1e6, "K_I (1/s³)", ".0f"),
+        "omega": _log(30.0, 1.0, 300.0, "ω, independent joint (rad/s)", ".3g"),
     }
 
     def grey(change=None):
@@ -85,8 +93,8 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     controls["controller"].observe(grey, names="value")
     grey()
 
-    def compute(controller, payload, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I):
-        c = make_controller(controller, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I)
+    def compute(controller, payload, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega):
+        c = make_controller(controller, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega)
         plant = p.with_payload(float(payload))
         res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
         return dict(controller=c, plant=plant, payload=payload, result=res, summary=control_summary(res))
@@ -100,6 +108,8 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
             extra += f"; ε = {c.epsilon:.3g}, ρ/ε = {c.rho / c.epsilon:.3g} 1/s"
         elif c.name == "adaptive":
             extra += f"; final payload estimate {res.payload_estimate[-1]:.4g} kg (true {payload:g})"
+        elif c.name == "independent":
+            extra += f"; ω = {c.omega[0]:.3g} rad/s, largest K_P = {c.K_P.max():.3g}"
         elif c.name == "operational_noint":
             theory = c.steady_state_error(st["plant"], res.q[-1])[2]
             extra += f"; e_z at rest {1e3 * s['final_error_z']:.4g} mm, theory {1e3 * theory:.4g} mm"

@@ -14,7 +14,7 @@ import scara
 from scara import plots
 from scara.clik import SEED_K
 from scara.dynamics import torque_breakdown
-from scara.plots.control import CONTROLLER_LABELS, CONTROLLER_DASHES
+from scara.plots.control import CONTROLLER_LABELS, CONTROLLER_DASHES, figure_slider, saturation_figure
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
 
@@ -22,8 +22,10 @@ ROOT = Path(__file__).resolve().parents[2]
 P5 = scara.ScaraParams().with_payload(5.0)
 #: stacked panels sharing one time axis (three or four of them) may be taller than the default 560 px; 780 px
 #: still fits a laptop screen with the browser's bars
-TALL = {"control_joint_motion": 780, "control_torques": 780, "control_operational_error": 780,
-        "control_boundary_layer": 780, "control_robust_term": 780, "control_steady_state": 780}
+TALL = {"control_joint_motion": 780, "control_torques": 780, "control_torque_differences": 780,
+        "control_operational_error": 780, "control_boundary_layer": 780, "control_boundary_layer_notes": 780,
+        "control_robust_term": 780, "control_steady_state": 780, "control_saturation": 780,
+        "control_estimate_slider": 780}
 
 
 @pytest.fixture(scope="module")
@@ -62,23 +64,48 @@ def figures():
     })
     robust, adaptive = scara.RobustController(), scara.AdaptiveController()
     op, op_noint = scara.OperationalSpaceController(), scara.OperationalSpaceController(integral=False)
+    indep = scara.IndependentJointController()
     rr = scara.simulate(robust, tr, P5, joint_reference=ref)
     ar = scara.simulate(adaptive, tr, P5, joint_reference=ref)
     orr, onr = scara.simulate(op, tr, P5), scara.simulate(op_noint, tr, P5)
+    ir = scara.simulate(indep, tr, P5, joint_reference=ref)
+    tight = (200.0, 200.0, 155.0, 50.0)
+    saturated = {"ideal actuator": ir,
+                 "155 N, anti-windup": scara.simulate(scara.IndependentJointController(tau_max=tight), tr, P5,
+                                                      joint_reference=ref),
+                 "155 N, no anti-windup": scara.simulate(
+                     scara.IndependentJointController(tau_max=tight, anti_windup=False), tr, P5, joint_reference=ref)}
     layers = {eps: scara.simulate(scara.RobustController(epsilon=eps), tr, P5, joint_reference=ref)
               for eps in (0.01, 0.05)}
     b33 = scara.inertia(ref.q[0])[2, 2]
-    labelled = {CONTROLLER_LABELS[c.name]: r for c, r in ((robust, rr), (adaptive, ar), (op, orr), (op_noint, onr))}
+    labelled = {CONTROLLER_LABELS[c.name]: r for c, r in ((robust, rr), (adaptive, ar), (op, orr), (op_noint, onr),
+                                                         (indep, ir))}
+    names = list(labelled)
+    # five runs are more than one phone-width legend can name: a dropdown shows the centralised laws, or the
+    # joint-space ones with the independent-joint PID; the torque differences leave out the no-integral law
+    groups = {"centralised laws": names[:4], "joint space": [names[4], names[0], names[1]]}
+    four = {n: labelled[n] for n in names if n != CONTROLLER_LABELS["operational_noint"]}
+    ideal = scara.inverse_dynamics(ref.q, ref.qd, ref.qdd, P5)
+    slow = {k: scara.simulate(scara.AdaptiveController(K_pi=k), tr, P5, joint_reference=ref) for k in (0.01, 1.0)}
     figs.update({
         "control_robust_term": plots.robust_term_figure(rr, robust.epsilon),
         "control_boundary_layer": plots.boundary_layer_slider_figure(layers, 0.016, window=(40.0, 40.15)),
         "control_estimate": plots.payload_estimate_figure(ar, true_mass=5.0),
         "control_steady_state": plots.steady_state_figure(orr, onr, 5.0 * P5.g0 / (b33 * op.K_P[2]),
                                                           5.0 * P5.g0 / b33),
-        "control_error_norm": plots.error_norm_figure(labelled),
+        "control_error_norm": plots.error_norm_figure(labelled, groups=groups),
         "control_joint_motion": plots.joint_motion_figure(labelled),
         "control_operational_error": plots.operational_error_figure(labelled),
-        "control_torques": plots.torque_figure(labelled),
+        "control_torques": plots.torque_figure({n: labelled[n] for n in names[:4]}),
+        "control_torque_differences": plots.torque_figure(four, reference=ideal, window=(3.95, 4.25),
+                                                          title="Torque minus the torque the arm needs<br>"
+                                                                "around the corner at t = 4 s"),
+        "control_saturation": saturation_figure(saturated, limit=155.0),
+        "control_boundary_layer_notes": plots.boundary_layer_slider_figure(
+            layers, 0.016, notes={0.01: "sag at rest 0.0123 mm", 0.05: "sag at rest 0.0042 mm"}),
+        "control_estimate_slider": figure_slider(
+            {f"{k:g}": plots.payload_estimate_figure(r, 5.0, title=f"Adaptive control, K_π = {k:g}")
+             for k, r in slow.items()}, "K_π = "),
         "control_payload_sweep": plots.payload_sweep_figure(
             np.array([0.0, 5.0, 10.0]), {n: [1e-4, 2e-4, 3e-4] for n in ("robust", "adaptive", "operational")}),
     })
@@ -126,8 +153,70 @@ def test_each_method_and_controller_keeps_its_colour_and_dash(figures):
         if traces:
             assert traces[0].line.color == plots.PALETTE[key], key
             assert (traces[0].line.dash or "solid") == CONTROLLER_DASHES[key], key
-    dashes = [(t.line.dash or "solid") for t in norm.data if t.name in CONTROLLER_LABELS.values()]
-    assert len(set(dashes)) == len(dashes) >= 4
+    style = {t.name: ((t.line.dash or "solid"), t.line.color) for t in norm.data
+             if t.name in CONTROLLER_LABELS.values()}
+    assert len(style) == 5
+    assert len({d for d, _ in style.values()}) == len({c for _, c in style.values()}) == 5
+    # each dropdown entry shows its own group, and every run of the group once
+    for button in norm.layout.updatemenus[0].buttons:
+        shown = [t.name for t, v in zip(norm.data, button.args[0]["visible"]) if v]
+        assert len(shown) == len(set(shown)) >= 3
+
+
+def test_torque_differences_tell_the_controllers_apart(figures):
+    """The torques of the controllers coincide at the scale of the torques (a few tenths of a N m against
+    the 147 N on the quill); the differences from the torque the arm needs, around one corner at full sampling,
+    draw each controller as its own curve: distinct colour and dash, and curves that are not on top of each other
+    (the adaptive law's stays near zero, the others' reach a tenth of a N m)."""
+    fig = figures["control_torque_differences"]
+    panels = {}
+    for tr in fig.data:
+        panels.setdefault(tr.yaxis or "y", []).append(tr)
+    assert len(panels) == 4
+    for axis, traces in panels.items():
+        assert len(traces) == 4
+        assert len({(t.line.color, t.line.dash) for t in traces}) == 4
+        t0 = np.asarray(traces[0].x)
+        assert t0.min() >= 3.95 - 1e-6 and t0.max() <= 4.25 + 1e-6 and len(t0) == 301  # every sample of the window
+        peaks = {t.name: float(np.abs(np.asarray(t.y)).max()) for t in traces}
+        assert peaks["adaptive (Slotine-Li)"] < 0.1 * max(peaks.values()), (axis, peaks)
+    assert fig.layout.yaxis.title.text == "τ1 − τ1_d (N m)" and fig.layout.yaxis3.title.text == "f3 − f3_d (N)"
+    with pytest.raises(scara.ScaraError, match=r"reference has shape \(3, 4\)"):
+        plots.torque_figure(fig_runs_for_refusal(), reference=np.zeros((3, 4)))
+
+
+def fig_runs_for_refusal():
+    from types import SimpleNamespace as NS
+
+    n = 10
+    return {"a": NS(t=np.arange(n) * 1e-3, tau=np.zeros((n, 4)), e=np.zeros((n, 4)), controller="robust")}
+
+
+def test_saturation_figure_and_the_figure_slider(figures):
+    sat = figures["control_saturation"]
+    assert [t.name for t in sat.data if t.showlegend is not False][:3] == [
+        "ideal actuator", "155 N, anti-windup", "155 N, no anti-windup"]
+    bound = [t for t in sat.data if t.name and t.name.startswith("bound")]
+    assert len(bound) == 1 and list(bound[0].y) == [-155.0, -155.0]  # the quill pushes up: only -155 N is near
+    assert len({(t.line.color, t.line.dash) for t in sat.data[:9]}) == 3
+    sl = figures["control_estimate_slider"]
+    steps = sl.layout.sliders[0].steps
+    assert [s.label for s in steps] == ["0.01", "1"]
+    half = len(sl.data) // 2
+    assert steps[1].args[0]["visible"] == [i >= half for i in range(len(sl.data))]
+    assert "K_π = 1" in steps[1].args[1]["title.text"]
+    notes = figures["control_boundary_layer_notes"].layout.sliders[0].steps
+    assert notes[1].args[1]["title.text"].endswith("<br>sag at rest 0.0042 mm")
+    with pytest.raises(scara.ScaraError, match=r"notes name widths without a run: \[0\.3\]"):
+        plots.boundary_layer_slider_figure({0.05: None}, 0.016, notes={0.3: "x"})
+    with pytest.raises(scara.ScaraError, match="carries no integral_action_3"):
+        saturation_figure({"robust": fig_runs_for_refusal()["a"]})
+    with pytest.raises(scara.ScaraError, match=r"len\(runs\) = 9"):
+        saturation_figure({str(k): None for k in range(9)})
+    with pytest.raises(scara.ScaraError, match="figures must be a non-empty dict"):
+        figure_slider({}, "x")
+    with pytest.raises(scara.ScaraError, match="plotly Figure"):
+        figure_slider({"a": 1}, "x")
 
 
 @pytest.mark.parametrize("build, args, count", [
