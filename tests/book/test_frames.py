@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import plotly.graph_objects as go
 import pytest
 
 from scara import ScaraError, ScaraParams, link_frames
@@ -164,30 +165,113 @@ def test_bad_p_raises():
 
 
 # --------------------------------------------------------------------------- the 3-D views
-def _apart(points, gap=0.15):
-    pts = np.asarray(points, float)
-    d = np.linalg.norm(pts[:, None] - pts[None], axis=-1) + np.eye(len(pts)) * 1e9
-    return d.min() >= gap
+# An independent model of plotly's 3-D view (the matrices gl-plot3d builds): a model matrix mapping each axis range
+# onto [-a/2, a/2] for its aspect ratio a, a look-at view matrix from the camera's eye to its centre with +z up,
+# a 45° perspective, then clip coordinates to the pixels of the plot area. The frame names are annotations pinned
+# at 3-D points and moved by (xshift, yshift) px from where the point is drawn.
+FIGURE_WIDTHS = (312, 342, 1240)  # a 360-px and a 390-px phone page, a laptop
+
+
+def _look_at(eye, centre):
+    f = np.asarray(centre, float) - eye
+    f /= np.linalg.norm(f)
+    s = np.cross(f, [0.0, 0.0, 1.0])
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ eye
+    return m
+
+
+def _pixels(fig, points, width):
+    """(n, 2) pixel positions, x from the figure's left edge and y up from its bottom, of 3-D ``points``."""
+    lay = fig.layout
+    sc = lay.scene
+    ranges = np.array([sc.xaxis.range, sc.yaxis.range, sc.zaxis.range], float)
+    aspect = np.array([sc.aspectratio.x, sc.aspectratio.y, sc.aspectratio.z], float)
+    model = np.eye(4)
+    model[[0, 1, 2], [0, 1, 2]] = aspect / (ranges[:, 1] - ranges[:, 0])
+    model[:3, 3] = -ranges.mean(axis=1) * model[[0, 1, 2], [0, 1, 2]]
+    eye = np.array([sc.camera.eye.x, sc.camera.eye.y, sc.camera.eye.z], float)
+    centre = np.array([sc.camera.center.x, sc.camera.center.y, sc.camera.center.z], float)
+    w = width - lay.margin.l - lay.margin.r
+    h = lay.height - lay.margin.t - lay.margin.b
+    f = 1 / math.tan(math.pi / 8)
+    proj = np.array([[f * h / w, 0, 0, 0], [0, f, 0, 0], [0, 0, -1, -0.02], [0, 0, -1, 0]])
+    hom = np.c_[np.asarray(points, float), np.ones(len(points))]
+    clip = (proj @ _look_at(eye, centre) @ model @ hom.T).T
+    ndc = clip[:, :2] / clip[:, 3:]
+    return np.c_[lay.margin.l + (ndc[:, 0] + 1) / 2 * w, lay.margin.b + (ndc[:, 1] + 1) / 2 * h]
+
+
+def _annotation_boxes(fig, notes, width):
+    pts = _pixels(fig, [[a.x, a.y, a.z] for a in notes], width)
+    out = []
+    for a, (px, py) in zip(notes, pts):
+        w = sum(_char_width(c, a.font.size) for c in a.text) + 2 * (a.borderpad or 1)
+        h = 1.3 * a.font.size + 2 * (a.borderpad or 1)
+        x0 = px + a.xshift - {"left": 0, "center": w / 2, "right": w}[a.xanchor]
+        y0 = py + a.yshift - {"bottom": 0, "middle": h / 2, "top": h}[a.yanchor]
+        out.append((a.text, (x0, y0, x0 + w, y0 + h)))
+    return out
+
+
+def _check_names(fig, notes, where):
+    lay = fig.layout
+    for width in FIGURE_WIDTHS:
+        boxes = _annotation_boxes(fig, notes, width)
+        for i in range(len(boxes)):
+            t1, b1 = boxes[i]
+            # inside the plot area
+            assert lay.margin.l - 1 <= b1[0] and b1[2] <= width - lay.margin.r + 1, (where, width, t1, b1)
+            assert lay.margin.b - 1 <= b1[1] and b1[3] <= lay.height - lay.margin.t + 1, (where, width, t1, b1)
+            for t2, b2 in boxes[i + 1:]:
+                apart = b1[2] <= b2[0] or b2[2] <= b1[0] or b1[3] <= b2[1] or b2[3] <= b1[1]
+                assert apart, (where, width, t1, [round(v) for v in b1], t2, [round(v) for v in b2])
 
 
 @pytest.mark.parametrize("q", [c for c in CONFIGS if c is not None]
                          + [[0.0, math.pi * 0.97, 0.3, 0.0], [0.0, math.pi, 0.3, 0.0]])
-def test_3d_labels_at_distinct_positions(q):
+def test_3d_frame_names_do_not_overlap(q):
     g = arm_geometry(q)
-    assert len(g["labels"]) == len(g["label_points"]) == len(set(g["labels"]))
-    assert _apart(g["label_points"]), (g["labels"], g["label_points"])
-    fig = arm_figure(q)
-    names = fig.data[-1]
-    assert names.name == "frame names" and list(names.text) == g["labels"]
-    assert _apart(np.c_[names.x, names.y, names.z])
+    assert len(g["labels"]) == len(g["origins"]) == len(set(g["labels"]))
+    fig = arm_figure(q, names="annotations")
+    notes = fig.layout.scene.annotations
+    assert [a.text for a in notes] == g["labels"]
+    assert np.allclose([[a.x, a.y, a.z] for a in notes], g["origins"], atol=1e-4)  # pinned to the origins
+    _check_names(fig, notes, q)
+    # the same names as a 3-D text trace (the live panel's): each centred on its point, where the annotation's
+    # box has its centre, so the boxes are the same and do not overlap either
+    fig_text = arm_figure(q)
+    names = fig_text.data[-1]
+    assert names.name == "frame names" and list(names.text) == g["labels"] and names.textposition == "middle center"
+    for width in FIGURE_WIDTHS:
+        centres = _pixels(fig_text, np.c_[names.x, names.y, names.z], width)
+        boxes = _annotation_boxes(fig, notes, width)
+        for (text, b), c in zip(boxes, centres):
+            assert np.allclose(c, [(b[0] + b[2]) / 2, (b[1] + b[3]) / 2], atol=3.0), (q, width, text, c, b)
 
 
-def test_3d_slider_labels_at_distinct_positions_and_triads_larger():
+@pytest.mark.parametrize("joint", [0, 1, 2, 3])
+def test_3d_slider_frame_names_do_not_overlap_at_any_step(joint):
+    fig = joint_slider_figure([0.0, math.radians(60), 0.5, 0.0], joint=joint)
+    steps = fig.layout.sliders[0].steps
+    for s in steps:
+        notes = [go.layout.scene.Annotation(a) for a in s.args[1]["scene.annotations"]]
+        q = np.array([0.0, math.radians(60), 0.5, 0.0])
+        q[joint] = float(s.label) if joint == 2 else math.radians(float(s.label))
+        g = arm_geometry(q)
+        assert [a.text for a in notes] == g["labels"], s.label
+        assert np.allclose([[a.x, a.y, a.z] for a in notes], g["origins"], atol=1e-4), s.label
+        _check_names(fig, notes, (joint, s.label))
+    # the figure opens on its active step, names included
+    active = steps[fig.layout.sliders[0].active].args[1]["scene.annotations"]
+    assert [a.text for a in fig.layout.scene.annotations] == [a["text"] for a in active]
+
+
+def test_3d_triads_are_an_eighth_of_the_scene():
     fig = joint_slider_figure([0.0, math.radians(60), 0.5, 0.0], joint=1)
-    for s in fig.layout.sliders[0].steps:
-        data = s.args[0]
-        pts = np.c_[data["x"][-1], data["y"][-1], data["z"][-1]]
-        assert _apart(pts), s.label
     # triads of 0.3 m: an eighth of the 2.4-m wide scene
     xs = fig.data[2]
     seg = np.array([[xs.x[0], xs.y[0], xs.z[0]], [xs.x[1], xs.y[1], xs.z[1]]], float)

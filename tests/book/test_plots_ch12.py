@@ -16,7 +16,7 @@ from scara import NonFiniteError, ScaraError, ScaraParams, UnreachableError, fki
 from scara.plots import (arm_figure, determinant_figure, duality_figure, ellipse_slider_figure,
                          inverse_kinematics_figure, joint_slider_figure, manipulability_map_figure,
                          reference_ellipses_figure, workspace_ellipses_figure)
-from scara.plots.kinematics import arm_geometry
+from scara.plots.kinematics import arm_geometry, inverse_kinematics_slider_figure
 from scara.plots.layout import legend_entries
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
@@ -59,6 +59,16 @@ def test_arm_figure_traces_and_frames():
     fig = arm_figure(Q)
     assert isinstance(fig, go.Figure)
     assert [t.name for t in fig.data] == ["arm", "end effector", "x axes", "y axes", "z axes", "frame names"]
+    g = arm_geometry(Q)
+    assert list(fig.data[-1].text) == g["labels"] and not fig.layout.scene.annotations
+    # for the book's static figures, the frame names are scene annotations pinned to the distinct frame origins
+    fig_notes = arm_figure(Q, names="annotations")
+    assert [t.name for t in fig_notes.data] == ["arm", "end effector", "x axes", "y axes", "z axes"]
+    notes = fig_notes.layout.scene.annotations
+    assert [a.text for a in notes] == g["labels"]
+    assert np.allclose([[a.x, a.y, a.z] for a in notes], g["origins"], atol=1e-4)
+    with pytest.raises(ScaraError, match="names"):
+        arm_figure(Q, names="labels")
     ee = np.array([fig.data[1].x[0], fig.data[1].y[0], fig.data[1].z[0]])
     assert np.allclose(ee, _closed_form_position(Q), atol=1e-4)  # coordinates rounded to 0.1 mm
     # the end-effector triad (last of the 7 segments) points along the columns of R_e^b of eq-fk
@@ -125,6 +135,39 @@ def test_inverse_kinematics_figure_both_elbows_reach_the_target():
     assert np.linalg.norm(np.subtract(*elbows)) > 0.1  # two distinct solutions
     with pytest.raises(UnreachableError, match="annulus"):
         inverse_kinematics_figure([1.5, 0.0, 0.5, 0.0])
+
+
+def test_inverse_kinematics_slider_figure_follows_the_law_of_cosines():
+    values = [0.3, 0.6, 0.9, 1.0, 1.01, 1.2]
+    fig = inverse_kinematics_slider_figure([0.3, 0.0, 0.5, 0.0], values)
+    steps = fig.layout.sliders[0].steps
+    assert [s.label for s in steps] == [f"{v:.2f}" for v in values]
+    names = [t.name for t in fig.data]
+    for s, v in zip(steps, values):
+        data, layout, idx = s.args
+        assert [names[k] for k in idx] == ["elbow +1", "elbow −1", "target"]
+        assert data["x"][2] == [v] and data["y"][2] == [0.0]
+        c2 = (v**2 - P.a1**2 - P.a2**2) / (2 * P.a1 * P.a2)  # the law of cosines, independent of scara
+        if abs(c2) <= 1:
+            t2 = math.degrees(math.acos(c2))
+            assert f"θ2 = {t2:.1f}° (elbow +1), −{t2:.1f}° (−1)".replace("−0.0", "0.0") in layout["title.text"]
+            for arm_x, arm_y in zip(data["x"][:2], data["y"][:2]):
+                assert np.allclose([arm_x[-1], arm_y[-1]], [v, 0.0], atol=1e-4)  # each arm's tip on the target
+                assert math.isclose(math.hypot(arm_x[1], arm_y[1]), P.a1, rel_tol=1e-3)
+        else:
+            assert "out of reach: r > a1 + a2 = 1 m" in layout["title.text"]
+            assert data["x"][:2] == [[], []] and data["y"][:2] == [[], []]
+    # the figure opens on its first step
+    assert fig.layout.title.text == steps[0].args[1]["title.text"]
+    with pytest.raises(ScaraError, match="component"):
+        inverse_kinematics_slider_figure([0.3, 0.0, 0.5, 0.0], values, component=3)
+    with pytest.raises(ScaraError, match="slider steps"):
+        inverse_kinematics_slider_figure([0.3, 0.0, 0.5, 0.0], [0.3])
+    with pytest.raises(UnreachableError, match="first target"):
+        inverse_kinematics_slider_figure([1.2, 0.0, 0.5, 0.0], [1.2, 0.5])
+    # a height the quill cannot reach is named too
+    fig = inverse_kinematics_slider_figure([0.5, 0.0, 0.5, 0.0], [0.5, 1.5], component=2)
+    assert "off the stroke" in fig.layout.sliders[0].steps[1].args[1]["title.text"]
 
 
 def test_determinant_figure_matches_closed_form():
@@ -467,6 +510,7 @@ def _all_figures():
     stop = plan_path(**plan)
     return {
         "arm": arm_figure(Q), "joint_slider": joint_slider_figure(), "ik": inverse_kinematics_figure([0.18, 0.2, 0.5, 0]),
+        "ik_reach": inverse_kinematics_slider_figure([0.5, 0.0, 0.5, 0.0], [0.5, 0.9, 1.0, 1.01]),
         "determinant": determinant_figure(), "reference": reference_ellipses_figure(),
         "workspace": workspace_ellipses_figure(), "map": manipulability_map_figure(n=41),
         "duality": duality_figure([0, math.pi / 3, 0.5, 0]), "sweep": ellipse_slider_figure(),
