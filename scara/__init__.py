@@ -24,8 +24,9 @@ __version__ = "0.1.0"
 
 #: the names loaded on first use, and the sub-module of each
 _LAZY = {
-    **dict.fromkeys(("Arc", "Line", "Trajectory", "Trapezoidal", "Waypoint", "plan_path", "reference_plan",
-                     "reference_trajectory", "trapezoidal"), "trajectory"),
+    **dict.fromkeys(("Arc", "JointTrajectory", "Line", "Trajectory", "Trapezoidal", "Waypoint", "cubic",
+                     "joint_trajectory", "plan_path", "quintic", "reference_plan", "reference_trajectory",
+                     "trapezoidal"), "trajectory"),
     **dict.fromkeys(("ClikResult", "TransposeStability", "clik", "clik2", "second_order_gains",
                      "transpose_stability"), "clik"),
     **dict.fromkeys(("PI_NAMES", "coriolis", "dynamic_array", "dynamic_parameters", "forward_dynamics", "friction",
@@ -33,7 +34,8 @@ _LAZY = {
                      "potential_energy", "regressor", "total_energy", "torque_breakdown"), "dynamics"),
     **dict.fromkeys(("Controller", "PDGravityController", "SimulationResult", "TorqueController", "control_law",
                      "ikine_reference", "joint_setpoint", "simulate"), "simulate"),
-    **dict.fromkeys(("AdaptiveController", "OperationalSpaceController", "RobustController"), "control"),
+    **dict.fromkeys(("AdaptiveController", "IndependentJointController", "OperationalSpaceController",
+                     "RobustController"), "control"),
 }
 #: sub-modules that are attributes of the package under their own name (``scara.dynamics``)
 _SUBMODULES = ("errors", "params", "kinematics", "trajectory", "dynamics", "control")

@@ -116,7 +116,8 @@ class F:
         S, C = _mod("simulate"), _mod("control")
         return tuple(fz.label(c, f"<{type(c).__name__}()>") for c in (
             S.PDGravityController(), S.TorqueController(), C.RobustController(), C.AdaptiveController(),
-            C.OperationalSpaceController(), C.OperationalSpaceController(integral=False)))
+            C.OperationalSpaceController(), C.OperationalSpaceController(integral=False),
+            C.IndependentJointController()))
 
     @staticmethod
     @functools.lru_cache(maxsize=None)
@@ -314,6 +315,24 @@ TABLE = [
           target=lambda: F.trajs()[1].evaluate),
     Entry("trajectory", "start_orientation", lambda: [point_arg(), _p(), elbow_arg()]),
     Entry("trajectory", "reference_plan", lambda: []),
+    Entry("trajectory", "cubic", lambda: [q_arg("q0", lo=-1, hi=1), q_arg("q1", lo=-1, hi=1),
+                                          scalar("duration", 0.05, 2), q_arg("v0", True, -1, 1),
+                                          q_arg("v1", True, -1, 1), _p()]),
+    Entry("trajectory", "quintic", lambda: [q_arg("q0", lo=-1, hi=1), q_arg("q1", lo=-1, hi=1),
+                                            scalar("duration", 0.05, 2), q_arg("v0", True, -1, 1),
+                                            q_arg("v1", True, -1, 1), q_arg("a0", True, -1, 1),
+                                            q_arg("a1", True, -1, 1), _p()]),
+    Entry("trajectory", "joint_trajectory", lambda: [
+        vector("points", (3, 4), valid=st.sampled_from([JOINT_POINTS, JOINT_POINTS[::-1].copy()])),
+        vector("times", 3, valid=st.sampled_from([np.array([0.0, 0.2, 0.4]), np.array([0.1, 0.15, 0.5])])),
+        choice("kind", ("cubic", "quintic"), True), choice("velocities", ("mean", "spline"), True), _p()]),
+    Entry("trajectory", "joint_counterpart", lambda: [F.traj_arg(), choice("kind", ("cubic", "quintic"), True),
+                                                      small_int("extra", 0, 3)], examples=EXPENSIVE_EXAMPLES),
+    Entry("trajectory", "passage_times", lambda: [F.traj_arg()]),
+    Entry("trajectory", "path_deviation", lambda: [_joint_counterpart_arg(), F.traj_arg()]),
+    Entry("trajectory", "segment_deviations", lambda: [_joint_counterpart_arg(), F.traj_arg()]),
+    Entry("trajectory", "compare_joint_space", lambda: [F.traj_arg(), small_int("extra", 0, 2), _p()],
+          examples=EXPENSIVE_EXAMPLES),
     Entry("trajectory", "reference_trajectory",
           lambda: [scalar("dt", 0, 0, True, valid=st.sampled_from([1e-3, 1e-2])), _p()],
           examples=EXPENSIVE_EXAMPLES),
@@ -373,6 +392,18 @@ TABLE = [
         bool_arg("integral"), gain("K_P", lo=1000, hi=2000, optional=True), gain("K_D", lo=40, hi=100, optional=True),
         gain("K_I", lo=100, hi=9000, optional=True), F.params_arg("model"),
         gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "IndependentJointController", lambda: [
+        bool_arg("integral"), gain("omega", lo=5, hi=60, optional=True), gain("B_bar", lo=0.5, hi=30, optional=True),
+        bool_arg("feedforward"), bool_arg("saturation"), bool_arg("anti_windup"), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "IndependentJointController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
+          target=lambda: F.controllers()[6].run, scenario=lambda: _simulate_scenarios(6)),
+    Entry("control", "independent_gains", lambda: [gain("B_bar", lo=0.5, hi=30, optional=True),
+                                                   gain("omega", lo=5, hi=60, optional=True),
+                                                   gain("F", lo=0, hi=1, optional=True), bool_arg("integral")]),
+    Entry("control", "nominal_inertia", lambda: [_qs(), _p()]),
+    Entry("control", "joint_inertia_spread", lambda: [_qs(), _payloads(), gain("B_bar", lo=0.5, hi=30, optional=True),
+                                                      _p()]),
     Entry("control", "BoundedController", lambda: []),
     Entry("control", "RobustController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
           target=lambda: F.controllers()[2].run, scenario=lambda: _simulate_scenarios(2)),
@@ -564,6 +595,15 @@ def _p8():
                                                          np.eye(8) * 1e300, np.eye(8) * 1e-300)))
 
 
+#: three configurations within the joint limits, for the joint-space trajectories
+JOINT_POINTS = np.array([[0.0, 1.0, 0.3, 0.0], [0.2, 0.8, 0.35, 0.1], [0.4, 0.5, 0.3, 0.2]])
+
+
+def _joint_counterpart_arg():
+    """The joint-space counterpart of the first short trajectory (a valid ``jt`` for its path deviations)."""
+    return fixed("jt", st.just(None).map(lambda _: _mod("trajectory").joint_counterpart(F.trajs()[0])))
+
+
 def _qs():
     return vector("q", (3, 4), -2, 2, valid=st.sampled_from([np.array([[0.1, 1.0, 0.3, 0.0]]),
                                                               np.array([[0.1, 1.0, 0.3, 0.0], [0.5, -1.5, 0.5, 1.0]]),
@@ -600,6 +640,8 @@ NOT_FUZZED = {
     # result containers: dataclasses/classes the package fills (their fields are checked through the callables
     # that return them); Trajectory is built by plan_path (its constructor takes the planner's private _built)
     "Ellipsoid", "ClikResult", "TransposeStability", "SimulationResult", "Trajectory",
+    # built by cubic, quintic and joint_trajectory (its constructor takes their solved coefficients)
+    "JointTrajectory",
     # named-tuple records of the compiled kernels' constants (built by geometry(), lumped_parameters...)
     "Geometry", "LumpedParameters", "InertiaParts",
     # raw numba kernels: no input checks by design (they write into caller-given buffers); the checked wrappers

@@ -108,3 +108,35 @@ def test_sources_are_in_the_repository():
     pages.update({md.name: md.read_text() for md in (ROOT / "book").glob("*.md")})
     found = [f"{name}: {m.group(0)!r}" for name, text in pages.items() for m in _OUTSIDE.finditer(text)]
     assert not found, "pointers outside the repository: " + ", ".join(found)
+
+
+_EXERCISE = re.compile(r"```+\{exercise\}[^\n]*\n:label:\s*(\S+)")
+_SOLUTION = re.compile(r"```+\{solution\}\s*(\S+)\s*\n(?::[\w-]+:[^\n]*\n)*")
+
+
+@pytest.mark.parametrize("nb", [n for n in NOTEBOOKS if re.match(r"\d\d_|appendix", n.name)], ids=lambda p: p.name)
+def test_exercises_are_numbered_with_folded_solutions(nb):
+    """Each chapter's exercises are sphinx-exercise directives (numbered "Exercise 3.4", referable by label),
+    at least four, and each has a solution folded below it (``:class: dropdown``); none is numbered by hand."""
+    md = "\n".join(_src(c) for c in _cells(nb) if c["cell_type"] == "markdown")
+    labels = _EXERCISE.findall(md)
+    assert len(labels) >= 4, f"{nb.name}: {len(labels)} exercises written as {{exercise}} directives (at least 4)"
+    solutions = {m.group(1): m.group(0) for m in _SOLUTION.finditer(md)}
+    unsolved = [lab for lab in labels if lab not in solutions]
+    assert not unsolved, f"{nb.name}: exercises without a solution: {unsolved}"
+    unfolded = [lab for lab, head in solutions.items() if ":class: dropdown" not in head]
+    assert not unfolded, f"{nb.name}: solutions not folded (:class: dropdown): {unfolded}"
+    by_hand = re.findall(r"^\*\*\d+\.", md, re.M)
+    assert not by_hand, f"{nb.name}: exercises numbered by hand ({by_hand[:3]}): use {{exercise}}"
+
+
+def test_appendix_numbers_its_equations_and_figures_with_a_letter():
+    """In the built book the appendix's equations and figures read (A.1), Fig. A.2, not (1) and Fig. 2."""
+    page = ROOT / "_build" / "html" / "book" / "appendix_verification.html"
+    if not page.exists():
+        pytest.skip("the book is not built")
+    html = page.read_text()
+    eqnos = re.findall(r'class="eqno">\(([^)<]*)\)', html)
+    figs = re.findall(r'class="caption-number">Fig\. ([^ <]+)', html)
+    assert eqnos and figs, "the appendix has no numbered equation or figure"
+    assert all(n.startswith("A.") for n in eqnos + figs), f"appendix numbers without the letter A: {eqnos + figs}"
