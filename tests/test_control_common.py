@@ -2,11 +2,7 @@
 5 kg payload in the plant, unknown to every controller: the stated bounds, each compiled law against an
 independent numpy implementation (replayed on the recorded closed loop), the measures (chattering, summary,
 cost), the error cases, the plain-Python path, and the chapter's figures and live panel."""
-import json
 import math
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -17,7 +13,7 @@ from scara import (
 )
 from scara.control import TAU_MAX, chattering, control_summary, law_cost, replay_law
 
-from _control_shared import G0, P0, P5
+from _control_shared import G0, P0, P5, first_samples, plain_python
 
 
 # --------------------------------------------------------------------------------------------------
@@ -204,28 +200,13 @@ def test_error_beyond_its_bound_stops_the_run(traj):
 # --------------------------------------------------------------------------------------------------
 def test_plain_python_path_matches_compiled(traj, jref):
     n = 300
-    code = (
-        "import json, numpy as np\n"
-        "from scara import *\n"
-        "from types import SimpleNamespace as NS\n"
-        "tr = reference_trajectory()\n"
-        f"n = {n}\n"
-        "sub = NS(t=tr.t[:n], x=tr.x[:n], xd=tr.xd[:n], xdd=tr.xdd[:n], dt=tr.dt, q0=tr.q0)\n"
-        "c2 = clik2(tr)\n"
-        "jr = (c2.q[:n], c2.qd[:n], c2.qdd[:n])\n"
-        "p = ScaraParams().with_payload(5.0)\n"
+    out = plain_python(n, (
         "out = []\n"
         "for c in (RobustController(), AdaptiveController(), OperationalSpaceController()):\n"
         "    r = simulate(c, sub, p, joint_reference=jr if c.reference_kind == 'joint' else None)\n"
         "    out.append(np.r_[r.q.ravel(), r.tau.ravel()].tolist())\n"
-        "print(json.dumps(out))\n"
-    )
-    env = dict(os.environ, SCARA_NO_NUMBA="1")
-    out = json.loads(subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
-                                    check=True).stdout)
-    from types import SimpleNamespace as NS
-    sub = NS(t=traj.t[:n], x=traj.x[:n], xd=traj.xd[:n], xdd=traj.xdd[:n], dt=traj.dt, q0=traj.q0)
-    jr = (jref.q[:n], jref.qd[:n], jref.qdd[:n])
+        "print(json.dumps(out))\n"))
+    sub, jr = first_samples(traj, jref, n)
     for plain, c in zip(out, (RobustController(), AdaptiveController(), OperationalSpaceController())):
         r = simulate(c, sub, P5, joint_reference=jr if c.reference_kind == "joint" else None)
         ref = np.r_[r.q.ravel(), r.tau.ravel()]

@@ -2,18 +2,14 @@
 hand (unsaturated, saturated, the anti-windup update), the pole placement and the inertia margin, the nominal
 model and how far the arm strays from it, saturation over whole runs, the integral against the quill's weight,
 windup, the bad settings, and the interface every controller of the chapter shares."""
-import json
 import math
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from scara import IndependentJointController, ScaraError, ScaraParams, ShapeError, UnstableError, inertia, simulate
+from scara import IndependentJointController, ScaraError, ShapeError, UnstableError, inertia, simulate
 from scara.control import (
     B_BAR, ERROR_BOUND, OMEGA, TAU_MAX, TORQUE_BOUND, control_summary, independent_gains, joint_inertia_spread,
     law_cost, nominal_inertia, replay_law,
@@ -21,7 +17,7 @@ from scara.control import (
 from scara.simulate import _compiled_law
 
 import _largest
-from _control_shared import G0, P0, P5, _after, _pos_err, _rest
+from _control_shared import G0, P0, P5, _after, _pos_err, _rest, first_samples, plain_python
 
 
 def _step(c, q, qd, ref, chi, dt=1e-3):
@@ -310,26 +306,12 @@ def test_interface(independent_runs):
 def test_plain_python_path_matches_compiled(traj, jref):
     """The same first 300 samples without numba, with the quill's force bounded at 155 N (the law clips there)."""
     n = 300
-    code = (
-        "import json, numpy as np\n"
-        "from scara import IndependentJointController, ScaraParams, clik2, reference_trajectory, simulate\n"
-        "from types import SimpleNamespace as NS\n"
-        "tr = reference_trajectory()\n"
-        f"n = {n}\n"
-        "sub = NS(t=tr.t[:n], x=tr.x[:n], xd=tr.xd[:n], xdd=tr.xdd[:n], dt=tr.dt, q0=tr.q0)\n"
-        "c2 = clik2(tr)\n"
-        "jr = (c2.q[:n], c2.qd[:n], c2.qdd[:n])\n"
+    plain = np.array(plain_python(n, (
         "c = IndependentJointController(tau_max=(200, 200, 155, 50))\n"
-        "r = simulate(c, sub, ScaraParams().with_payload(5.0), joint_reference=jr)\n"
-        "print(json.dumps(np.r_[r.q.ravel(), r.tau.ravel(), r.saturated].tolist()))\n"
-    )
-    env = dict(os.environ, SCARA_NO_NUMBA="1")
-    plain = np.array(json.loads(subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
-                                               check=True).stdout))
-    from types import SimpleNamespace as NS
-    sub = NS(t=traj.t[:n], x=traj.x[:n], xd=traj.xd[:n], xdd=traj.xdd[:n], dt=traj.dt, q0=traj.q0)
-    r = simulate(IndependentJointController(tau_max=(200, 200, 155, 50)), sub, P5,
-                 joint_reference=(jref.q[:n], jref.qd[:n], jref.qdd[:n]))
+        "r = simulate(c, sub, p, joint_reference=jr)\n"
+        "print(json.dumps(np.r_[r.q.ravel(), r.tau.ravel(), r.saturated].tolist()))\n")))
+    sub, jr = first_samples(traj, jref, n)
+    r = simulate(IndependentJointController(tau_max=(200, 200, 155, 50)), sub, P5, joint_reference=jr)
     assert r.saturated.sum() > 10
     assert _largest.record("plain Python against compiled", np.abs(plain - np.r_[r.q.ravel(), r.tau.ravel(),
                                                                                     r.saturated]).max()) < 1e-8

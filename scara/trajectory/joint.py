@@ -52,7 +52,7 @@ from ..errors import (
 )
 from ..kinematics import _params, ikine, jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from .planner import MAX_SAMPLES, Trajectory, _samples
-from .timing import times as _times
+from .timing import in_time_order, times as _times
 
 __all__ = [
     "JointTrajectory", "cubic", "quintic", "joint_trajectory", "joint_counterpart", "passage_times", "path_deviation",
@@ -224,12 +224,9 @@ class JointTrajectory:
         :class:`~scara.NonFiniteError`.
         """
         t = _times(t, "t").reshape(-1)
-        if t.size > 1 and np.any(np.diff(t) < 0):
-            order = np.argsort(t, kind="stable")
-            out = [np.empty((t.size, 4)) for _ in range(3)]
-            for o, a in zip(out, self.evaluate(t[order])):
-                o[order] = a
-            return tuple(out)
+        unsorted = in_time_order(self.evaluate, t)
+        if unsorted is not None:
+            return unsorted
         n = t.size
         q = np.empty((n, 4))
         qd = np.zeros((n, 4))

@@ -26,7 +26,7 @@ from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_f
 from ..kinematics import _params, check_reachable, ikine, is_reachable
 from ..manipulability import manipulability
 from .paths import GEOMETRY_TOL, Arc, Line, _fmt
-from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, times
+from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, in_time_order, times
 
 __all__ = ["Waypoint", "Trajectory", "plan_path", "start_orientation", "MAX_SAMPLES"]
 
@@ -134,13 +134,9 @@ class Trajectory:
         infinite time raises :class:`~scara.NonFiniteError`.
         """
         t = times(t, "t").reshape(-1)
-        if t.size > 1 and np.any(np.diff(t) < 0):
-            order = np.argsort(t, kind="stable")
-            xs = self.evaluate(t[order])
-            out = [np.empty_like(a) for a in xs]
-            for o, a in zip(out, xs):
-                o[order] = a
-            return tuple(out)
+        unsorted = in_time_order(self.evaluate, t)
+        if unsorted is not None:
+            return unsorted
         n = t.size
         x = np.empty((n, 4))
         xd = np.zeros((n, 4))

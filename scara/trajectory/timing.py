@@ -53,6 +53,21 @@ def times(tau, name: str = "tau") -> np.ndarray:
 DEFAULT_BLEND_FRACTION = 1.0 / 3.0
 
 
+def in_time_order(evaluate, t: np.ndarray):
+    """For times ``t`` (n,) out of ascending order: ``evaluate`` (which walks the segments forwards, so needs
+    them sorted) run on the sorted times, its outputs (arrays of n rows) put back in the order of ``t``.
+    ``None`` when ``t`` is already in order, for the caller to evaluate directly."""
+    if t.size < 2 or not np.any(np.diff(t) < 0):
+        return None
+    order = np.argsort(t, kind="stable")
+    out = []
+    for a in evaluate(t[order]):
+        o = np.empty_like(a)
+        o[order] = a
+        out.append(o)
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class Trapezoidal:
     """A trapezoidal velocity profile covering ``length`` (m) in ``duration`` (s) with blends of ``blend`` (s).

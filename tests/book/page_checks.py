@@ -17,9 +17,12 @@ from __future__ import annotations
 
 import functools
 import http.server
+import os
 import sys
 import threading
 from pathlib import Path
+
+import pytest
 
 # the width of a phone and of a laptop, in CSS pixels
 PHONE, LAPTOP = 390, 1280
@@ -134,7 +137,15 @@ def layout_problems(pg, width: int) -> list[str]:
     return problems
 
 
-def _serve(folder: Path):
+def unavailable(reason: str):
+    """A browser test that cannot run: skipped with the reason, or failed under ``CI=true``."""
+    if os.environ.get("CI", "").lower() == "true":
+        pytest.fail(f"browser test cannot run under CI=true: {reason}")
+    pytest.skip(reason)
+
+
+def serve(folder: Path):
+    """Serve ``folder`` on 127.0.0.1 (a free port) from a daemon thread: ``(server, base URL)``."""
     class Quiet(http.server.SimpleHTTPRequestHandler):
         def log_message(self, *args):
             pass
@@ -150,7 +161,7 @@ def main(argv: list[str]) -> int:
     from jupyterlab_driver import ARGS, CHROMIUM
 
     folder, pages = Path(argv[0]), argv[1:]
-    httpd, url = _serve(folder)
+    httpd, url = serve(folder)
     found = 0
     with sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)

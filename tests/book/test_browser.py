@@ -13,29 +13,20 @@ Outside CI a missing Chromium or a missing build skips with the reason; with ``C
 """
 from __future__ import annotations
 
-import functools
-import http.server
 import os
 import re
 import shutil
-import threading
 from pathlib import Path
 
 import pytest
 
 from jupyterlab_driver import ARGS, CHROMIUM  # one place for the browser's path and flags
-from page_checks import LAPTOP, PHONE, layout_problems, settle
+from page_checks import LAPTOP, PHONE, layout_problems, serve, settle
+from page_checks import unavailable as _unavailable
 
 ROOT = Path(__file__).resolve().parents[2]
 HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))  # another build can be tested
 SHOTS = HTML.parent / "screenshots"
-IN_CI = os.environ.get("CI", "").lower() == "true"
-
-
-def _unavailable(reason: str):
-    if IN_CI:
-        pytest.fail(f"browser test cannot run under CI=true: {reason}")
-    pytest.skip(reason)
 
 
 def _book_pages() -> list[str]:
@@ -49,16 +40,8 @@ def _book_pages() -> list[str]:
 def server():
     if not (HTML / "index.html").exists():
         _unavailable(f"the book is not built ({HTML}/index.html missing): run jupyter-book build . first")
-
-    class Quiet(http.server.SimpleHTTPRequestHandler):
-        def log_message(self, *args):
-            pass
-
-    handler = functools.partial(Quiet, directory=str(HTML))
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
-    thread.start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}/"
+    httpd, url = serve(HTML)
+    yield url
     httpd.shutdown()
 
 

@@ -8,7 +8,6 @@ No book build needed; outside CI a missing Chromium or Playwright skips with the
 from __future__ import annotations
 
 import math
-import os
 import shutil
 from pathlib import Path
 
@@ -20,8 +19,8 @@ from scara.plots import arm_figure, joint_slider_figure
 from scara.plots.kinematics import scene_projection
 
 from page_checks import LABEL_OVERLAPS
+from page_checks import unavailable as _unavailable
 
-IN_CI = os.environ.get("CI", "").lower() == "true"
 #: figure widths: a 390-px phone page (its text column) and a laptop
 WIDTHS = (342, 1240)
 CONFIGS = [
@@ -41,12 +40,6 @@ NAME_BOXES = """() => {
             cx - r.left, cy - r.top, r.width, r.height, s.h];
   });
 }"""
-
-
-def _unavailable(reason: str):
-    if IN_CI:
-        pytest.fail(f"browser test cannot run under CI=true: {reason}")
-    pytest.skip(reason)
 
 
 @pytest.fixture(scope="module")
