@@ -241,8 +241,7 @@ class IndependentJointController(BoundedController):
         if self.integral:
             self.K_I = K_I0 if K_I is None else positive_gains(K_I, "K_I")
             with np.errstate(over="ignore", invalid="ignore"):
-                margin = (self.F + self.K_D) * self.K_P - self.B_bar * self.K_I
-            bad = ~(margin > 0)
+                bad = ~(self.inertia_margin() > 1.0)  # B_bar itself beyond the inertia the loop tolerates
             if bad.any():
                 i = int(np.argmax(bad))
                 raise UnstableError(
@@ -272,7 +271,8 @@ class IndependentJointController(BoundedController):
     def inertia_margin(self) -> np.ndarray:
         """The book's (eq-ctl-ij-margin): the largest ratio ``B_ii / B_bar_ii`` (4,) each joint's loop tolerates.
         With the true inertia ``B_ii`` in place of ``B_bar_ii`` the error polynomial is
-        ``B_ii s^3 + (F + K_D) s^2 + K_P s + K_I``, Hurwitz (Routh) while ``B_ii < (F + K_D) K_P / K_I``. With the placed gains (eq-ctl-ij-gains) ``F + K_D = 3 omega B_bar``,
+        ``B_ii s^3 + (F + K_D) s^2 + K_P s + K_I``, Hurwitz (Routh) while ``B_ii < (F + K_D) K_P / K_I``. With
+        the placed gains (eq-ctl-ij-gains) ``F + K_D = 3 omega B_bar``,
         so the ratio is ``3 omega 3 omega^2 / omega^3 = 9`` whatever the friction; PD (a second-order loop)
         tolerates any inertia (``inf``)."""
         with np.errstate(divide="ignore"):
