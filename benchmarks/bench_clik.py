@@ -26,7 +26,7 @@ import numpy as np
 
 from scara import ScaraParams, reference_trajectory
 from scara._compile import COMPILED
-from scara.clik import SEED_K, clik, clik2, second_order_gains
+from scara._clik import SEED_K, clik, clik2, second_order_gains
 
 # the command line shared by the bench_*.py scripts (this folder is on sys.path when run)
 from bench_simulate import bench_arguments

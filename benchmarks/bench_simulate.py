@@ -32,7 +32,7 @@ import numpy as np
 
 from scara import PDGravityController, ScaraParams, reference_trajectory, simulate
 from scara._compile import COMPILED
-from scara.clik import clik2
+from scara._clik import clik2
 
 #: CPU time of this process: on the shared machine the wall clock also counts other processes' turns
 CLOCK = time.process_time

@@ -55,8 +55,8 @@ sys.path.insert(0, HERE)
 import scara  # noqa: E402
 from scara import dynamics as dyn  # noqa: E402
 from scara import kinematics as kin  # noqa: E402
-from scara.clik import clik  # noqa: E402
-from scara.simulate import PDGravityController, ikine_reference, simulate  # noqa: E402
+from scara._clik import clik  # noqa: E402
+from scara._simulate import PDGravityController, ikine_reference, simulate  # noqa: E402
 from scara.trajectory import reference_trajectory  # noqa: E402
 
 import agreement as A  # noqa: E402

@@ -151,7 +151,7 @@ class ArrayLayout:
     """Named fields of a flat float array, declared once: what a compiled kernel reads by offset.
 
     A compiled law receives its gains (and its model) as one flat float array (see
-    :data:`scara.simulate.LAW_SIGNATURE`); declaring the fields here, with their sizes, gives both the offsets
+    :data:`scara._simulate.LAW_SIGNATURE`); declaring the fields here, with their sizes, gives both the offsets
     the kernel reads (module-level ints, constants to numba) and the one packer that writes the array, so the
     two cannot drift::
 

@@ -1,33 +1,62 @@
-"""Public names of a package that load their sub-module on first use (PEP 562).
+"""The package's public names, each read from the ``__all__`` of the module that defines it, and loaded on first
+use for the later chapters' modules (PEP 562).
 
-``from scara import simulate`` keeps working, but ``import scara`` no longer imports every chapter's module:
-a name listed here is looked up in its sub-module the first time it is asked for, and then kept in the
-package's namespace.
+``import scara`` imports the first chapters' modules (``EAGER``) and binds their ``__all__``; a name of a module in
+``LAZY`` is bound the first time it is asked for (``scara.simulate``, ``from scara import clik``), so that
+``import scara`` does not import every chapter. Which module holds which lazy name is read from the module's
+source (its literal ``__all__``) without importing it, so each public name is listed once, in its own module.
 """
 from __future__ import annotations
 
+import ast
 import importlib
+import importlib.util
+import re
 import sys
-import types
+
+_ALL = re.compile(r"^__all__\s*=\s*(\[.*?\])\s*$", re.S | re.M)
+_GROUP = re.compile(r"^_(EAGER|LAZY)\s*=\s*(\(.*?\))\s*$", re.S | re.M)
 
 
-def lazy_names(package: str, names: dict[str, str], submodules=(), shadowed=()):
-    """``__getattr__`` and ``__dir__`` for the package ``package`` (PEP 562).
+def exported(module: str) -> tuple[str, ...]:
+    """The public names of ``module`` (a dotted name), read from its source without importing it: its literal
+    ``__all__ = [...]``, or, for a package whose names come from its sub-modules (it declares ``_EAGER`` and
+    ``_LAZY`` tuples and calls :func:`public_names`), the names of those sub-modules. Raises ``ImportError`` when
+    the module has neither."""
+    spec = importlib.util.find_spec(module)
+    with open(spec.origin, encoding="utf-8") as fh:
+        source = fh.read()
+    match = _ALL.search(source)
+    if match is not None:
+        return tuple(ast.literal_eval(match.group(1)))
+    groups = [ast.literal_eval(m.group(2)) for m in _GROUP.finditer(source)]
+    if not groups:
+        raise ImportError(f"{module} has no literal __all__ list: the package cannot list its public names")
+    return tuple(dict.fromkeys(n for subs in groups for sub in subs for n in exported(f"{module}.{sub}")))
 
-    ``names`` maps each public name to the sub-module that defines it (relative, ``"simulate"``);
-    ``submodules`` lists sub-modules that are themselves public attributes (``scara.dynamics``); ``shadowed``
-    lists sub-modules that define a public function of their own name (``scara.clik`` is the function
-    ``clik``, as it has always been): once such a sub-module is imported, however that happens, the
-    package's attribute stays the function (see :class:`_ShadowingPackage`).
+
+def public_names(package: str, eager=(), lazy=(), submodules=()):
+    """Bind the public names of ``package``; return its ``__all__``, ``__getattr__`` and ``__dir__``.
+
+    ``eager``: sub-modules imported now, whose ``__all__`` names are bound at once; ``lazy``: sub-modules whose
+    names are bound when first asked for; ``submodules``: sub-modules that are public attributes themselves
+    (``scara.dynamics``). A name defined by two sub-modules must be the same object in both (a re-export).
     """
     module = sys.modules[package]
     namespace = vars(module)
-    if shadowed:
-        module.__class__ = _ShadowingPackage
-        namespace["_SHADOWED"] = frozenset(shadowed)
+    owner: dict[str, str] = {}
+    for sub in (*eager, *lazy):
+        for name in exported(f"{package}.{sub}"):
+            owner.setdefault(name, sub)
+    for sub in eager:
+        mod = importlib.import_module(f"{package}.{sub}")
+        for name in mod.__all__:
+            if owner[name] == sub:
+                namespace[name] = getattr(mod, name)
+    lazy_owner = {name: sub for name, sub in owner.items() if sub in lazy}
 
     def __getattr__(name):
-        sub = names.get(name)
+        sub = lazy_owner.get(name)
         if sub is not None:
             value = getattr(importlib.import_module(f"{package}.{sub}"), name)
         elif name in submodules:
@@ -38,21 +67,6 @@ def lazy_names(package: str, names: dict[str, str], submodules=(), shadowed=()):
         return value
 
     def __dir__():
-        return sorted(set(namespace) | set(names) | set(submodules))
+        return sorted(set(namespace) | set(owner) | set(submodules))
 
-    return __getattr__, __dir__
-
-
-class _ShadowingPackage(types.ModuleType):
-    """A package whose public function ``f`` lives in its sub-module ``f`` (``scara.clik.clik``).
-
-    Importing a sub-module binds it on its package (``setattr(scara, "clik", <module scara.clik>)``); for the
-    names of ``_SHADOWED`` the package keeps the function instead, so ``scara.clik`` and ``from scara import
-    clik`` give the function whether or not the sub-module was imported before.
-    """
-
-    def __setattr__(self, name, value):
-        if (isinstance(value, types.ModuleType) and name in vars(self).get("_SHADOWED", ())
-                and value.__name__ == f"{self.__name__}.{name}"):
-            value = getattr(value, name)
-        super().__setattr__(name, value)
+    return [*owner, *submodules], __getattr__, __dir__

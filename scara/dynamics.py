@@ -43,7 +43,6 @@ import numpy as np
 from ._compile import ArrayLayout, kernel
 from .errors import (ScaraError, ShapeError, UnstableError, as_array, check_angles, check_finite_result,
                      check_positive)
-from .kinematics import _params
 from .params import ScaraParams
 
 __all__ = [
@@ -85,7 +84,7 @@ def dynamic_array(p: ScaraParams | None = None) -> np.ndarray:
     >>> dynamic_array()[[1, 7, 23, 24]]
     array([ 0.5 , 10.  ,  0.  ,  9.81])
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     return DYNAMIC_LAYOUT.pack(**{name: getattr(p, name) for name in DYNAMIC_LAYOUT.names})
 
 
@@ -471,7 +470,7 @@ def gravity(q, p: ScaraParams | None = None) -> np.ndarray:
     """
     out = np.empty(4)
     gravity_kernel(_config(q), dynamic_array(p), out)
-    return check_finite_result(out, "g(q)", m3=_params(p).m3, g0=_params(p).g0)
+    return check_finite_result(out, "g(q)", m3=ScaraParams.resolve(p).m3, g0=ScaraParams.resolve(p).g0)
 
 
 def friction(p: ScaraParams | None = None) -> np.ndarray:
@@ -480,7 +479,7 @@ def friction(p: ScaraParams | None = None) -> np.ndarray:
     >>> np.diag(friction()).tolist()
     [5e-05, 5e-05, 25.0, 2.0]
     """
-    return np.diag(_params(p).F)
+    return np.diag(ScaraParams.resolve(p).F)
 
 
 def inverse_dynamics(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
@@ -562,7 +561,7 @@ def dynamic_parameters(p: ScaraParams | None = None) -> np.ndarray:
 
 def payload_from_pi(pi, base: ScaraParams | None = None) -> float | np.ndarray:
     """Payload mass ``m_L = pi[0] - m_l3`` (kg) read from a parameter vector (13,) or a series (N, 13)."""
-    base = _params(base)
+    base = ScaraParams.resolve(base)
     pi = as_array(pi, "pi", (N_PI,), allow_batch=True)
     m = pi[..., PI_M3] - base.m_l3
     return float(m) if np.ndim(m) == 0 else m
@@ -585,7 +584,7 @@ def params_from_pi(pi, base: ScaraParams | None = None, rtol: float = 1e-9) -> S
     >>> params_from_pi(dynamic_parameters(p)).m_L
     2.5
     """
-    base = _params(base)
+    base = ScaraParams.resolve(base)
     pi = as_array(pi, "pi", (N_PI,))
     rtol = check_positive(rtol, "rtol")
     m3, m2l2, b11, b12, b22, b13, b33, b14, b44 = (float(v) for v in pi[:9])
@@ -653,7 +652,7 @@ def _kinetic_batch(q, qd, dp, work, out):
 def potential_energy(q, p: ScaraParams | None = None):
     """Gravitational potential energy ``U(q)`` (J) of chapter 5, zero at the base-frame floor; shape (4,) gives
     a float, (N, 4) gives (N,)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = _config(q, allow_batch=True)
     with np.errstate(over="ignore", invalid="ignore"):
         u = p.g0 * ((p.m_l1 + p.m_l2) * p.d0 + p.m3 * (p.d0 - q[..., 2]))
@@ -684,7 +683,7 @@ def torque_breakdown(q, qd, qdd, p: ScaraParams | None = None) -> dict:
     * ``coriolis``: ``C qd`` of the robot without payload; ``friction``: ``F qd``; ``gravity``: ``g`` of the
       robot without payload (the quill's weight, on joint 3 only).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     bare = p.replace(m_L=0.0)
     no_rotor = bare.replace(I_m=(0.0, 0.0, 0.0, 0.0))
     q = as_array(q, "q", (4,), allow_batch=True)

@@ -17,6 +17,7 @@ __all__ = [
     "as_vector",
     "check_number",
     "check_positive",
+    "is_bool",
     "check_count",
     "check_flag",
     "check_index",
@@ -86,7 +87,7 @@ def _numeric_objects(arr: np.ndarray) -> bool:
     """True for an object array whose entries are all real numbers (not booleans, not strings)."""
     if arr.dtype.kind != "O":
         return False
-    return all(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+    return all(isinstance(v, (int, float, np.integer, np.floating)) and not is_bool(v)
                for v in arr.ravel())
 
 
@@ -95,11 +96,13 @@ def as_vector(value, name: str, n: int = 4) -> np.ndarray:
     return as_array(value, name, (n,))
 
 
-def check_number(value, name: str, what: str = "a number") -> float:
+def check_number(value, name: str, what: str = "a number", unit: str = "") -> float:
     """Return ``value`` as a float after checking it is one finite real number: a bool, a string, an array or
-    anything ``float`` refuses raises :class:`ScaraError` ("``name`` must be ``what``, got ..."), NaN or inf
-    :class:`NonFiniteError`."""
-    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
+    anything ``float`` refuses raises :class:`ScaraError` ("``name`` must be ``what`` (in ``unit``), got ..."),
+    NaN or inf :class:`NonFiniteError`."""
+    if unit:
+        what = f"{what} (in {unit})"
+    if is_bool(value) or isinstance(value, (str, bytes)) or np.ndim(value) != 0:
         raise ScaraError(f"{name} must be {what}, got {value!r}")
     try:
         v = float(value)
@@ -119,32 +122,44 @@ def check_positive(value, name: str, strict: bool = True) -> float:
     return v
 
 
-def check_count(value, name: str, low: int, high: int, what: str = "") -> int:
-    """Return ``value`` as an int after checking it is an integer (not a bool, not a float) with
-    ``low <= value <= high``: the sizes of grids and sample counts, bounded so that no call starts an
-    unbounded amount of work. ``what`` says what the count counts (for the message)."""
+def is_bool(value) -> bool:
+    """True for ``True``/``False`` and NumPy's bools: the one test of "is this a bool?" (a bool is an ``int`` to
+    Python, so every check of a number or a count refuses it first, rather than reading ``True`` as 1)."""
+    return isinstance(value, (bool, np.bool_))
+
+
+def check_count(value, name: str, low: int, high: int, what: str = "", why: str = "") -> int:
+    """Return ``value`` as an int after checking it is an integer (not a bool, not a float, not a string) with
+    ``low <= value <= high``: the sizes of grids, sample counts, steps, bounded so that no call starts an unbounded
+    amount of work. ``what`` says what the count counts and ``why`` where the upper limit comes from (both for the
+    message, which names the value and the range).
+
+    >>> check_count(36, "steps", 1, 121, "slider steps")
+    36
+    """
     unit = f" {what}" if what else ""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise ScaraError(f"{name} = {value!r} must be a whole number (an int) of{unit or ' items'}, between {low} "
+    if is_bool(value) or not isinstance(value, (int, np.integer)):
+        raise ScaraError(f"{name} = {value!r:.80} must be a whole number (an int) of{unit or ' items'}, between {low} "
                          f"and {high}")
     n = int(value)
     if not low <= n <= high:
-        raise ScaraError(f"{name} = {n}{unit} is outside the allowed range {low} <= {name} <= {high}")
+        reason = f" ({why})" if why else ""
+        raise ScaraError(f"{name} = {n}{unit} is outside the allowed range {low} <= {name} <= {high}{reason}")
     return n
 
 
 def check_flag(value, name: str) -> bool:
     """Return ``value`` as a bool after checking it is one (``True``/``False``, or a NumPy bool): a string such
     as ``"no"`` is refused rather than read as true."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise ScaraError(f"{name} = {value!r} must be True or False")
+    if not is_bool(value):
+        raise ScaraError(f"{name} = {value!r:.80} must be True or False (a bool), got {type(value).__name__}")
     return bool(value)
 
 
 def check_index(value, name: str, size: int) -> int:
     """Return ``value`` as an int after checking it is an integer index ``0 <= value < size`` (not a bool, not a
     float such as 0.7, which would silently truncate)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+    if is_bool(value) or not isinstance(value, (int, np.integer)):
         raise ScaraError(f"{name} = {value!r} must be an integer index 0..{size - 1}")
     i = int(value)
     if not 0 <= i < size:

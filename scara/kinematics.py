@@ -25,7 +25,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._compile import kernel
-from .errors import ScaraError, UnreachableError, as_array, check_angles, check_finite_result, _numbers
+from .errors import ScaraError, UnreachableError, UnstableError, as_array, check_angles, check_finite_result, _numbers
 from .params import ScaraParams
 
 __all__ = [
@@ -53,17 +53,15 @@ __all__ = [
     "planar_det",
     "planar_jacobian_dot",
     "elbow_cosine",
+    "SINGULAR_SIN",
+    "check_regular",
 ]
 
-_DEFAULT = ScaraParams()
+#: ``|sin theta2|`` at or below which a configuration counts as singular for the solves that need ``J_A^-1``
+#: (``det J_A = a1 a2 sin theta2``, (1.9)): 1e-12 leaves ``J_A^-1`` with entries up to about 1e12 times the arm's
+#: scale, beyond which the solve keeps no significant digit of a velocity
+SINGULAR_SIN = 1e-12
 
-
-def _params(p):
-    if p is None:
-        return _DEFAULT
-    if not isinstance(p, ScaraParams):
-        raise ScaraError(f"p must be a ScaraParams object or None, got {type(p).__name__}")
-    return p
 
 
 def _elbow_sign(elbow) -> int:
@@ -77,7 +75,7 @@ def _elbow_sign(elbow) -> int:
 
 def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
     """``A_0^b`` (1.1): frame 0 hangs at height ``d0`` with its z axis pointing down."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     return np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, p.d0], [0, 0, 0, 1.0]])
 
 
@@ -90,7 +88,7 @@ Geometry = namedtuple("Geometry", "a1 a2 d0")
 
 def geometry(p: ScaraParams | None = None) -> Geometry:
     """The :class:`Geometry` record of ``p`` (default the robot of the book's introduction)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     return Geometry(float(p.a1), float(p.a2), float(p.d0))
 
 
@@ -250,7 +248,7 @@ def dh_table(q=None, p: ScaraParams | None = None) -> np.ndarray:
 
     With ``q`` the joint variables are filled in; without it they are zero.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = np.zeros(4) if q is None else check_angles(as_array(q, "q", (4,)))
     return np.array([
         [p.a1, 0.0, 0.0, q[0]],
@@ -278,7 +276,7 @@ def link_frames(q, p: ScaraParams | None = None) -> np.ndarray:
 
     Computed as the running product of the DH matrices of :func:`dh_table`, shape (6, 4, 4).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,)))
     frames = [BASE_TRANSFORM(p)]
     for row in dh_table(q, p):
@@ -295,7 +293,7 @@ def pose(q, p: ScaraParams | None = None) -> np.ndarray:
     >>> pose([0.0, 0.0, 0.5, 0.0])
     array([ 1. , -0. ,  0.5,  0. ])
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     if q.ndim == 1:
         out = np.empty(4)
@@ -322,7 +320,7 @@ def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
 
     ``det J_A = a1 a2 sin(theta2)``: singular with the arm stretched or folded.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,)))
     out = np.empty((4, 4))
     jacobian_kernel(q, p.a1, p.a2, out)
@@ -331,7 +329,7 @@ def jacobian(q, p: ScaraParams | None = None) -> np.ndarray:
 
 def jacobian_dot(q, qd, p: ScaraParams | None = None) -> np.ndarray:
     """``Jdot_A(q, qd)``, the time derivative of :func:`jacobian` along a motion (4.17), shape (4, 4)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,)))
     qd = as_array(qd, "qd", (4,))
     out = np.empty((4, 4))
@@ -384,7 +382,7 @@ def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
     >>> ikine(pose([0.3, -1.2, 0.4, 0.1]), elbow=-1).round(6)
     array([ 0.3, -1.2,  0.4,  0.1])
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     elbow = _elbow_sign(elbow)
     x = as_array(x, "x", (4,), allow_batch=True)
     batch = x.ndim == 2
@@ -403,7 +401,7 @@ def is_reachable(points, p: ScaraParams | None = None) -> np.ndarray:
     """Boolean mask: which points (shape (3,)/(4,) or (N, 3)/(N, 4), positions first) the arm can reach: inside
     the annulus ``|a1 - a2| <= r <= a1 + a2`` with ``d3 = d0 - p_z`` in the stroke ``[p.d3_min, p.d3_max]``.
     A point holding NaN or inf is not reachable (False)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     pts = _numbers(points, "points must be an array of numbers")
     if pts.ndim not in (1, 2) or pts.shape[-1] not in (3, 4):
         raise ScaraError(f"points must have shape (3,), (4,), (N, 3) or (N, 4), got {pts.shape}")
@@ -416,7 +414,7 @@ def is_reachable(points, p: ScaraParams | None = None) -> np.ndarray:
 
 def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -> None:
     """Raise :class:`UnreachableError` naming the point and the limit it breaks if the arm cannot reach it."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     try:
         three = np.shape(point) == (3,)
     except ValueError:  # a ragged sequence: as_array names it
@@ -427,3 +425,21 @@ def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -
     r = math.hypot(x[0], x[1])
     code = IK_OUTSIDE_ANNULUS if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12) else IK_OUTSIDE_STROKE
     raise UnreachableError(_unreachable_message(x, code, p, label))
+
+
+def check_regular(q, p: ScaraParams | None = None, what: str = "the start configuration") -> np.ndarray:
+    """Return ``q`` after checking that ``J_A(q)`` can be inverted: the one rule for "is this configuration
+    singular?" wherever the package needs ``J_A^-1`` (a start velocity ``qd0 = J_A^-1 xd_d(0)``, a CLIK start).
+    ``det J_A = a1 a2 sin theta2`` (1.9), so ``q`` is refused when ``|sin theta2| <= SINGULAR_SIN``, with an
+    :class:`~scara.UnstableError` naming ``what``, ``q`` and ``theta2``.
+
+    >>> check_regular([0.0, 1.0, 0.5, 0.0]).tolist()
+    [0.0, 1.0, 0.5, 0.0]
+    """
+    ScaraParams.resolve(p)
+    q = as_array(q, "q", (4,))
+    if abs(math.sin(q[1])) <= SINGULAR_SIN:
+        raise UnstableError(f"{what} q = {np.round(q, 6).tolist()} is singular (theta2 = {q[1]:.6g} rad; "
+                            f"det J_A = a1 a2 sin theta2 vanishes): J_A cannot be inverted there; give the start "
+                            f"speeds qd0 explicitly, or start away from theta2 = 0 and pi")
+    return q

@@ -79,6 +79,22 @@ class ScaraParams:
             raise ScaraError(f"the quill's stroke d3_min = {self.d3_min:g} m .. d3_max = {self.d3_max:g} m must be a "
                              f"range: d3_min < d3_max")
 
+    # -- the one way every function turns its optional ``p`` into parameters --------------------------
+    @classmethod
+    def resolve(cls, p) -> "ScaraParams":
+        """``p`` itself when it is a :class:`ScaraParams`, the course's robot ``ScaraParams()`` when it is None;
+        anything else raises :class:`~scara.ScaraError` naming its type. Every function of the package that takes
+        an optional parameter object ``p`` starts with ``p = ScaraParams.resolve(p)``.
+
+        >>> ScaraParams.resolve(None) == ScaraParams()
+        True
+        """
+        if p is None:
+            return _DEFAULT
+        if not isinstance(p, cls):
+            raise ScaraError(f"p must be a ScaraParams object or None, got {type(p).__name__}")
+        return p
+
     # -- copies -------------------------------------------------------------------------------------
     def replace(self, **changes) -> "ScaraParams":
         """Return a copy with the given fields replaced, e.g. ``p.replace(m_l3=12.0)``."""
@@ -144,3 +160,7 @@ class ScaraParams:
             ("d3_min", "m", "top of the quill's stroke"), ("d3_max", "m", "bottom of the quill's stroke"),
         ]
         return [(s, f"{fmt(getattr(self, s))} {u}", m) for s, u, m in rows]
+
+
+#: the robot of the course without payload, returned by :meth:`ScaraParams.resolve` for ``p=None``
+_DEFAULT = ScaraParams()

@@ -25,7 +25,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from scara import ScaraError, ShapeError, NonFiniteError, UnreachableError, UnstableError, ikine, jacobian, pose
-from scara.clik import SEED_K, _solve_kept, clik, clik2, second_order_gains, start_configuration, transpose_stability
+from scara._clik import SEED_K, _solve_kept, clik, clik2, second_order_gains, start_configuration, transpose_stability
 from scara.trajectory import plan_path, reference_trajectory
 
 DT = 1e-3
@@ -324,7 +324,7 @@ def test_plain_python_gives_the_same_numbers(tmp_path):
         import numpy as np, sys
         from scara._compile import COMPILED
         from scara.trajectory import plan_path
-        from scara.clik import clik, clik2, transpose_stability
+        from scara._clik import clik, clik2, transpose_stability
         tr = plan_path([[0.3, 0.2, 0.5], [0.5, 0.1, 0.4]], durations=[0.3], total=0.4)
         out = {m: clik(tr, m).q for m in ("inverse", "transpose", "pseudoinverse")}
         out["damped"] = clik(tr, "inverse", damping=0.05).q
@@ -485,7 +485,7 @@ def test_live_panel_reports_refused_settings():
 
 @pytest.mark.parametrize("scale", [0.5, 1.0, 3.9, 3.93, 5.0, 10.0])
 def test_fast_transpose_check_agrees_with_eigenvalues(ref, scale):
-    from scara.clik import _transpose_check_kernel
+    from scara._clik import _transpose_check_kernel
 
     K = scale * np.array(SEED_K)
     st_ = transpose_stability(ref, K)
@@ -507,7 +507,7 @@ def test_q0_outside_the_stroke_is_refused(ref):
 
 
 def test_damping_above_its_bound_is_refused(ref):
-    from scara.clik import MAX_DAMPING_REACH
+    from scara._clik import MAX_DAMPING_REACH
     with pytest.raises(ScaraError, match=rf"damping = 1e\+300 m is above the largest damping accepted, "
                                          rf"{MAX_DAMPING_REACH:g} times the reach a1 \+ a2: 10 m"):
         clik(ref, damping=1e300)

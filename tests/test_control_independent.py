@@ -14,7 +14,7 @@ from scara.control import (
     B_BAR, ERROR_BOUND, OMEGA, TAU_MAX, TORQUE_BOUND, control_summary, independent_gains, joint_inertia_spread,
     law_cost, nominal_inertia, replay_law,
 )
-from scara.simulate import _compiled_law
+from scara._simulate import _compiled_law
 
 import _largest
 from _control_shared import G0, P0, P5, _after, _pos_err, _rest, first_samples, plain_python

@@ -58,7 +58,7 @@ TIMEOUT_S = 10.0  # per example: SIGALRM turns a longer call into a failure nami
 HARD_TIMEOUT_FACTOR = 3  # a call that ignores SIGALRM (compiled code) ends the process after 3 x the timeout
 LOG = os.environ.get("SCARA_FUZZ_LOG")
 
-MODULES = ("kinematics", "manipulability", "trajectory", "clik", "dynamics", "simulate", "control", "gains",
+MODULES = ("kinematics", "_manipulability", "trajectory", "_clik", "dynamics", "_simulate", "control", "gains",
            "params", "errors")
 
 
@@ -289,15 +289,15 @@ TABLE = [
                                                     Arg("label", st.just("p"), st.sampled_from([None, 3, {}]), True)]),
     Entry("kinematics", "geometry", lambda: [_p()]),
     # ---- manipulability ----------------------------------------------------------------------------------
-    Entry("manipulability", "manipulability", lambda: [q_arg(), _p()]),
-    Entry("manipulability", "velocity_ellipsoid", lambda: [q_arg(), _p(), _rows()]),
+    Entry("_manipulability", "manipulability", lambda: [q_arg(), _p()]),
+    Entry("_manipulability", "velocity_ellipsoid", lambda: [q_arg(), _p(), _rows()]),
     # documented: "reciprocal lengths 1/sigma_i (inf where sigma_i = 0)"
-    Entry("manipulability", "force_ellipsoid", lambda: [q_arg(), _p(), _rows()],
+    Entry("_manipulability", "force_ellipsoid", lambda: [q_arg(), _p(), _rows()],
           documented_non_finite=("result.lengths",)),
     # documented: W is "NaN where the point is outside the annulus"
-    Entry("manipulability", "workspace_map", lambda: [_p(), small_int("n", 3, 25)],
+    Entry("_manipulability", "workspace_map", lambda: [_p(), small_int("n", 3, 25)],
           documented_non_finite=("result[2]",)),
-    Entry("manipulability", "singular_radii", lambda: [_p()]),
+    Entry("_manipulability", "singular_radii", lambda: [_p()]),
     # ---- trajectory --------------------------------------------------------------------------------------
     Entry("trajectory", "Line", lambda: [vector("start", 3), vector("end", 3)]),
     Entry("trajectory", "Arc", lambda: _arc_args()),
@@ -337,13 +337,13 @@ TABLE = [
           lambda: [scalar("dt", 0, 0, True, valid=st.sampled_from([1e-3, 1e-2])), _p()],
           examples=EXPENSIVE_EXAMPLES),
     # ---- clik --------------------------------------------------------------------------------------------
-    Entry("clik", "clik", lambda: _clik_args(), examples=EXPENSIVE_EXAMPLES, mutate_max=2),
-    Entry("clik", "clik2", lambda: _clik2_args(), examples=EXPENSIVE_EXAMPLES, mutate_max=2),
-    Entry("clik", "start_configuration", lambda: [F.traj_arg(), _p()]),
-    Entry("clik", "transpose_stability", lambda: [F.traj_arg(), gain("K", optional=True), _p(),
+    Entry("_clik", "clik", lambda: _clik_args(), examples=EXPENSIVE_EXAMPLES, mutate_max=2),
+    Entry("_clik", "clik2", lambda: _clik2_args(), examples=EXPENSIVE_EXAMPLES, mutate_max=2),
+    Entry("_clik", "start_configuration", lambda: [F.traj_arg(), _p()]),
+    Entry("_clik", "transpose_stability", lambda: [F.traj_arg(), gain("K", optional=True), _p(),
                                                   elbow_arg()]),
-    Entry("clik", "second_order_gains", lambda: [gain("K", optional=True)]),
-    Entry("clik", "dexterity", lambda: [q_arg(), choice("objective", ("sin2", "manipulability"), True), _p()]),
+    Entry("_clik", "second_order_gains", lambda: [gain("K", optional=True)]),
+    Entry("_clik", "dexterity", lambda: [q_arg(), choice("objective", ("sin2", "manipulability"), True), _p()]),
     # ---- dynamics ----------------------------------------------------------------------------------------
     Entry("dynamics", "dynamic_array", lambda: [_p()]),
     Entry("dynamics", "dynamic_parameters", lambda: [_p()]),
@@ -362,15 +362,15 @@ TABLE = [
     Entry("dynamics", "torque_breakdown", lambda: [q_arg(), q_arg("qd"), q_arg("qdd"), _p()]),
     Entry("dynamics", "dynamics_workspace", lambda: []),
     # ---- simulate ----------------------------------------------------------------------------------------
-    Entry("simulate", "Controller", lambda: []),
-    Entry("simulate", "PDGravityController", lambda: [gain("K_P", lo=0, hi=1e4, optional=True),
+    Entry("_simulate", "Controller", lambda: []),
+    Entry("_simulate", "PDGravityController", lambda: [gain("K_P", lo=0, hi=1e4, optional=True),
                                                       gain("K_D", lo=0, hi=1e3, optional=True),
                                                       F.params_arg("model")]),
-    Entry("simulate", "TorqueController", lambda: [q_arg("tau", optional=True, lo=-10, hi=10)]),
-    Entry("simulate", "simulate", lambda: _simulate_args(), examples=EXPENSIVE_EXAMPLES,
+    Entry("_simulate", "TorqueController", lambda: [q_arg("tau", optional=True, lo=-10, hi=10)]),
+    Entry("_simulate", "simulate", lambda: _simulate_args(), examples=EXPENSIVE_EXAMPLES,
           scenario=lambda: _simulate_scenarios(None)),
-    Entry("simulate", "ikine_reference", lambda: [F.traj_arg(), _p(), elbow_arg()]),
-    Entry("simulate", "joint_setpoint", lambda: [q_arg("q_d"),
+    Entry("_simulate", "ikine_reference", lambda: [F.traj_arg(), _p(), elbow_arg()]),
+    Entry("_simulate", "joint_setpoint", lambda: [q_arg("q_d"),
                                                  scalar("duration", 0, 0, valid=st.sampled_from([0.05, 0.1, 0.3])),
                                                  scalar("dt", 0, 0, True, valid=st.sampled_from([1e-3, 1e-2]))]),
     # ---- control -----------------------------------------------------------------------------------------

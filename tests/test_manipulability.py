@@ -133,7 +133,7 @@ def test_ellipsoid_rows_must_be_integer_indices():
 
 
 def test_workspace_map_grid_is_bounded_before_any_work():
-    from scara.manipulability import MAX_GRID
+    from scara._manipulability import MAX_GRID
     with pytest.raises(ScaraError, match=rf"n = 1000000000 grid points per side is outside the allowed range 3 <= n "
                                          rf"<= {MAX_GRID}"):
         workspace_map(n=10**9)

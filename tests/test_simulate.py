@@ -16,7 +16,7 @@ from scara import (
 )
 from scara.dynamics import DP_A1, DP_A2, DP_D0, gravity_kernel
 from scara.kinematics import jacobian_kernel, pose_kernel
-from scara.simulate import closed_loop_kernel  # noqa: F401  (the compiled loop must import)
+from scara._simulate import closed_loop_kernel  # noqa: F401  (the compiled loop must import)
 
 from _largest import record
 
@@ -393,7 +393,7 @@ def test_plant_acceleration_equals_forward_dynamics_for_random_robots(seed):
 
     from scara import ScaraParams, forward_dynamics
     from scara.dynamics import dynamic_array
-    from scara.simulate import _plant_acceleration, _plant_constants
+    from scara._simulate import _plant_acceleration, _plant_constants
 
     rng = np.random.default_rng(seed)
     u = lambda lo, hi, n=None: rng.uniform(lo, hi, n)  # noqa: E731

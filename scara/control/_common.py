@@ -17,8 +17,8 @@ from .. import _compile
 from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
 from ..gains import gain_vector
 from ..params import ScaraParams
-from ..simulate import LAW_SIGNATURE, OK, Controller, _compiled_law
-from ..simulate.interface import _count
+from .._simulate import LAW_SIGNATURE, OK, Controller, _compiled_law
+from .._simulate.interface import _count
 
 __all__ = [
     "TAU_MAX", "MAX_ERROR", "BOUND_FIELDS", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
@@ -35,7 +35,7 @@ MAX_REPEATS = 1000
 #: treated as lost (code 3), long before the state becomes large enough for the engine's own limit.
 MAX_ERROR = 0.05
 
-# OK (0) is the engine's own "all is well" (:data:`scara.simulate.OK`); a law's failure codes start at 2
+# OK (0) is the engine's own "all is well" (:data:`scara._simulate.OK`); a law's failure codes start at 2
 TORQUE_BOUND, ERROR_BOUND, SINGULAR_JACOBIAN = 2, 3, 4
 #: The meaning of each code a chapter-6 law may return.
 FAILURE_CAUSES = {
@@ -99,9 +99,9 @@ class BoundedController(Controller):
 
     def run(self, traj=None, plant: ScaraParams | None = None, **kwargs):
         """``scara.simulate(self, traj, plant, **kwargs)``: the run, returning a
-        :class:`~scara.simulate.SimulationResult`; a failure of the law raises :class:`~scara.UnstableError`
+        :class:`~scara._simulate.SimulationResult`; a failure of the law raises :class:`~scara.UnstableError`
         with the time, the cause and the bound (see :meth:`explain`)."""
-        from ..simulate import simulate  # noqa: PLC0415
+        from .._simulate import simulate  # noqa: PLC0415
 
         return simulate(self, traj, plant, **kwargs)
 
@@ -110,7 +110,7 @@ class BoundedController(Controller):
 # replaying a law on recorded samples: its own cost per step, and a check against another implementation
 # --------------------------------------------------------------------------------------------------
 def _run_series(result, shapes: dict) -> dict:
-    """The arrays ``{name: trailing shape}`` of a recorded run (a :class:`~scara.simulate.SimulationResult` or
+    """The arrays ``{name: trailing shape}`` of a recorded run (a :class:`~scara._simulate.SimulationResult` or
     any object with those attributes), each checked finite with shape ``(N, *trailing)`` and one common ``N``;
     :class:`~scara.ScaraError` naming the missing or wrong attribute otherwise."""
     out = {}

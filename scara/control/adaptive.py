@@ -17,9 +17,8 @@ import numpy as np
 from .._compile import ArrayLayout
 from ..dynamics import DP_ML3, N_PI, PI_NAMES, dynamic_parameters, regressor_kernel
 from ..errors import ScaraError, ShapeError
-from ..kinematics import _params
 from ..params import ScaraParams
-from ..simulate import control_law
+from .._simulate import control_law
 from ._common import BOUND_FIELDS, ERROR_BOUND, BoundedController, positive_gains, torque_code
 
 __all__ = ["AdaptiveController", "adaptation_gains"]
@@ -142,7 +141,7 @@ class AdaptiveController(BoundedController):
         self.Lambda = positive_gains(Lambda, "Lambda")
         self.K_D = positive_gains(K_D, "K_D")
         self.K_pi_inv = adaptation_gains({"m3": 0.01} if K_pi is None else K_pi)
-        self.model = _params(model)
+        self.model = ScaraParams.resolve(model)
         self._set_bounds(tau_max, max_error)
 
     @property

@@ -39,10 +39,9 @@ import numpy as np
 from .._compile import ArrayLayout
 from ..dynamics import inertia
 from ..errors import ScaraError, ShapeError, UnstableError, as_array
-from ..kinematics import _params
 from ..params import ScaraParams
-from ..simulate import control_law
-from ..simulate.interface import _finite_result, _flag
+from .._simulate import control_law
+from .._simulate.interface import _finite_result, _flag
 from ._common import BOUND_FIELDS, ERROR_BOUND, OK, BoundedController, positive_gains, torque_code
 
 __all__ = ["IndependentJointController", "independent_gains", "nominal_inertia", "joint_inertia_spread", "B_BAR",
@@ -71,7 +70,7 @@ def nominal_inertia(q, p: ScaraParams | None = None) -> np.ndarray:
     """``B_bar`` (4,): the mean over the configurations ``q`` (N, 4) of the diagonal of ``B(q)`` for the
     parameters ``p`` (default ``ScaraParams()``, no payload): the constant inertia each joint's nominal model
     (eq-ctl-ij-joint) keeps. Over the reference path it gives :data:`B_BAR` (rounded)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = _configurations(q)
     Bs = np.array([inertia(qk, p) for qk in q])
     return _finite_result(np.diagonal(Bs, axis1=1, axis2=2).mean(axis=0), "the nominal inertia", f"m_L = {p.m_L:g} kg")
@@ -92,7 +91,7 @@ def joint_inertia_spread(q, payloads=(0.0, 10.0), B_bar=B_BAR, p: ScaraParams | 
     """
     from .robust import _inertias  # noqa: PLC0415 - the same checked sweep over configurations and payloads
 
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     B_bar = positive_gains(B_bar, "B_bar")
     _, Bs = _inertias(q, payloads, p)
     diag = np.diagonal(Bs, axis1=1, axis2=2)
@@ -231,7 +230,7 @@ class IndependentJointController(BoundedController):
         self.feedforward = _flag(feedforward, "feedforward")
         self.saturation = _flag(saturation, "saturation")
         self.anti_windup = _flag(anti_windup, "anti_windup")
-        self.model = _params(model)
+        self.model = ScaraParams.resolve(model)
         self.F = np.asarray(self.model.F, dtype=float)
         self.B_bar = positive_gains(B_bar, "B_bar")
         self.omega = positive_gains(omega, "omega")
@@ -283,7 +282,7 @@ class IndependentJointController(BoundedController):
         """Joint error ``q_d - q`` (4,) at rest with ``plant``'s weight uncompensated (eq-ctl-ij-sag): the
         quill's ``-m3 g0 / K_P3`` (m; ``d3`` runs past ``d3_d``: the quill sags) for PD, zero with the integral (a
         constant load is integrated away). The revolute joints carry no gravity torque."""
-        plant = _params(plant)
+        plant = ScaraParams.resolve(plant)
         e = np.zeros(4)
         if not self.integral:
             e[2] = -plant.m3 * plant.g0 / self.K_P[2]

@@ -16,10 +16,10 @@ import numpy as np
 from .._compile import ArrayLayout
 from ..dynamics import DP_A1, DP_A2, DP_D0, inverse_dynamics_kernel
 from ..errors import UnstableError
-from ..kinematics import _params, jacobian_dot_kernel, jacobian_kernel, pose_kernel
+from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..params import ScaraParams
-from ..simulate import control_law
-from ..simulate.interface import _finite_result, _flag
+from .._simulate import control_law
+from .._simulate.interface import _finite_result, _flag
 from ._common import BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code
 
 __all__ = ["OperationalSpaceController"]
@@ -127,7 +127,7 @@ class OperationalSpaceController(BoundedController):
         else:
             self.K_I = np.zeros(4)
         self.name = "operational" if self.integral else "operational_noint"
-        self.model = _params(model)
+        self.model = ScaraParams.resolve(model)
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
@@ -144,7 +144,7 @@ class OperationalSpaceController(BoundedController):
         small coupling ``B13 = B23`` of the rotor of motor 3 (a relative 3e-4 here); with it, zero.
         ``q`` (default ``[0, -pi/2, 0.5, 0]``) matters only through that coupling.
         """
-        plant = _params(plant)
+        plant = ScaraParams.resolve(plant)
         if self.integral:
             return np.zeros(4)
         from ..dynamics import gravity, inertia  # noqa: PLC0415

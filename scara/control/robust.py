@@ -21,10 +21,9 @@ import numpy as np
 from .._compile import ArrayLayout
 from ..dynamics import friction_kernel, gravity_kernel, inertia
 from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
-from ..kinematics import _params
 from ..params import ScaraParams
-from ..simulate import control_law
-from ..simulate.interface import _finite_result
+from .._simulate import control_law
+from .._simulate.interface import _finite_result
 from ._common import BOUND_FIELDS, ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains
 
 __all__ = ["RobustController", "sliding_weight", "lyapunov_matrix", "sliding_matrix", "inertia_uncertainty",
@@ -92,7 +91,7 @@ def sliding_matrix(K_P, K_D, P) -> np.ndarray:
 
 
 def _inertias(q, payloads, p):
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_array(q, "q", (4,), allow_batch=True).reshape(-1, 4)
     if len(q) == 0:
         raise ShapeError("q holds no configuration: the bounds over the configurations need at least one (N >= 1)")
@@ -143,7 +142,7 @@ def design_inertia_estimate(q, payloads=(0.0, 10.0), p: ScaraParams | None = Non
     ``(B_hat (4,), alpha)``."""
     from scipy.optimize import minimize  # noqa: PLC0415
 
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q, Bs = _inertias(q, payloads, p)
     Binv = np.linalg.inv(Bs)
     eye = np.eye(4)
@@ -276,7 +275,7 @@ class RobustController(BoundedController):
         self.sliding = np.ascontiguousarray(self.Q[4:, :])
         self.sliding[np.abs(self.sliding) < 1e-12 * np.abs(self.sliding).max()] = 0.0
         self.B_hat = positive_gains(B_hat, "B_hat")
-        self.model = _params(model)
+        self.model = ScaraParams.resolve(model)
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:

@@ -20,12 +20,12 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..errors import ScaraError
-from ..kinematics import _params
 from ._common import PALETTE, as_list, envelope, run_colour, run_label, run_name, thin
 from .course import course_figure
 from .kinematics import top_axes, top_view_arm
 from .layout import finish_layout
 from .trajectory import decimate
+from ..params import ScaraParams
 
 __all__ = [
     "MAX_FRAMES", "FRAME_MS", "frame_indices", "play_controls", "magnification_text", "trajectory_animation",
@@ -153,7 +153,7 @@ def trajectory_animation(traj, p=None, fast: float = 0.1, rest: float = 1.0, hei
     values are ``traj.joints()`` (closed-form inverse kinematics). Raises :class:`ScaraError` for bad arguments.
     """
     _check_traj(traj)
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     idx = frame_indices(traj.t, traj.x, fast, rest)
     q = traj.joints()
     k = decimate(traj, 1500)
@@ -231,7 +231,7 @@ def _runs_animation(runs, p, fast, rest, height, title, cols, extra_rows, extra_
                     dense=None):
     """The shared body of :func:`clik_animation` and :func:`control_animation`: one top-view panel per run
     (path, arm, magnified tool) over ``extra_rows`` full-width panels drawn by ``add_extra``."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     n = len(runs)
     rows_arm = -(-n // cols)
     r0 = runs[0]
@@ -392,7 +392,7 @@ def course_animation(traj, p=None, fast: float = 0.1, rest: float = 1.0, height:
     from .kinematics import arm_geometry
 
     _check_traj(traj)
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     idx = frame_indices(traj.t, traj.x, fast, rest)
     fig = course_figure(traj, p, steps=61, height=height)  # 61 arms: the scene box holds the arm all along
     names = [t.name for t in fig.data]

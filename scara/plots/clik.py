@@ -2,8 +2,8 @@
 manipulability along the path, the drift of a relaxed component, the transpose's stability limit, the damped
 inverse near a singularity, the second-order CLIK's joint reference, and a gain sweep with slider steps.
 
-Every builder takes :class:`scara.clik.ClikResult` objects (and computes nothing but what it draws, except
-:func:`gain_slider_figure`, which runs :func:`scara.clik.clik` for each slider step). Long runs are thinned to
+Every builder takes :class:`scara._clik.ClikResult` objects (and computes nothing but what it draws, except
+:func:`gain_slider_figure`, which runs :func:`scara._clik.clik` for each slider step). Long runs are thinned to
 about ``points`` samples per trace; error curves keep the largest value of every thinned interval (an
 envelope), so no peak is lost on a log scale.
 """
@@ -15,7 +15,7 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik, clik2, second_order_gains
+from .._clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik, clik2, second_order_gains
 from ..errors import ScaraError, UnstableError, as_array
 from ._common import (
     AXIS_COLOURS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, METHOD_DASHES, METHOD_LABELS, PALETTE, f32,
@@ -382,7 +382,7 @@ def length_text(metres: float) -> str:
 
 def _run_with_gains(traj, method: str, K):
     """One CLIK run with the gains ``K`` (4,) of :func:`clik`; the second-order CLIK takes ``K_P = K²``,
-    ``K_D = 2K`` (:func:`scara.clik.second_order_gains`), as the chapter's live panel does."""
+    ``K_D = 2K`` (:func:`scara._clik.second_order_gains`), as the chapter's live panel does."""
     if method == "second_order":
         return clik2(traj, *second_order_gains(np.asarray(K, dtype=float)))
     return clik(traj, method, np.asarray(K, dtype=float))
@@ -392,14 +392,14 @@ def gain_steps_figure(traj, gains: dict, method: str = "transpose", points: int 
                       prefix: str = "", suffix: str = "", height: int = 460) -> go.Figure:
     """Static slider over chosen gain vectors: for each step ``label: K`` of ``gains`` (``K`` the four gains
     ``K_x, K_y, K_z, K_φ`` in 1/s) the position-error envelope of one ``method`` on ``traj``: the inverse
-    (4.4) or the transpose (4.8) run by :func:`scara.clik.clik`, or the second-order law (4.16) run by
-    :func:`scara.clik.clik2` with ``K_P = K²``, ``K_D = 2K``. It is what the chapter's live panel shows when
+    (4.4) or the transpose (4.8) run by :func:`scara._clik.clik`, or the second-order law (4.16) run by
+    :func:`scara._clik.clik2` with ``K_P = K²``, ``K_D = 2K``. It is what the chapter's live panel shows when
     its gain sliders are set to each ``K``, and works with no kernel (slider steps toggle visibility).
 
     Each step's title names the method (or ``title``) and the step (``prefix + label + suffix``, also shown
     above the slider) and, below, the largest position error after the first 0.1 s
     (:meth:`ClikResult.summary`), or ``refused: past the stability limit`` where the discrete-time limits
-    (4.6), (4.12) or (4.19) fail and :func:`scara.clik.clik` or :func:`scara.clik.clik2` refuses the gains
+    (4.6), (4.12) or (4.19) fail and :func:`scara._clik.clik` or :func:`scara._clik.clik2` refuses the gains
     (:class:`UnstableError`; the step then draws no curve). The log axis spans eight decades below the largest
     error of all steps.
 

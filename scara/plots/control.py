@@ -4,7 +4,7 @@ robust term and its boundary layer (with a static slider over ``epsilon``), the 
 without integral action, the error against the payload mass, a static slider over any set of figures, and the
 live panel's summary figure.
 
-Builders take :class:`scara.simulate.SimulationResult` objects (a dict ``{label: result}`` where several are
+Builders take :class:`scara._simulate.SimulationResult` objects (a dict ``{label: result}`` where several are
 compared) and compute nothing but what they draw. Long runs are thinned to about ``points`` samples per trace;
 error curves on log axes keep the largest value of each thinned interval (an envelope), so no peak is lost.
 Every controller keeps its colour (``PALETTE``) and its dash style (``CONTROLLER_DASHES``) across the chapter,

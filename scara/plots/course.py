@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 import plotly.graph_objects as go
 
-from ..kinematics import _params
-from ..manipulability import manipulability
+from .._manipulability import manipulability
 from ._common import PALETTE, as_list, slider
 from ._common import MAX_POINTS, MAX_STEPS, check_count
 from .kinematics import arm_geometry
 from .layout import finish_layout
 from .trajectory import _waypoint_traces, decimate
+from ..params import ScaraParams
 
 __all__ = ["course_figure", "TRAIL_LEGEND", "COLOURBAR_TITLE"]
 
@@ -57,7 +57,7 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
     """
     steps = check_count(steps, "steps", MAX_STEPS, minimum=1, what="slider steps")
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     k = decimate(traj, points)
     q = traj.joints()
     w = manipulability(q[k], p)

@@ -12,10 +12,10 @@ from plotly.subplots import make_subplots
 
 from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError, as_vector
-from ..kinematics import _params
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, LOG_FLOOR, f32, slider, thin
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, MAX_SWEEP, check_count
 from .layout import finish_layout, stacked_axes
+from ..params import ScaraParams
 
 __all__ = [
     "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "torque_share_figure",
@@ -233,7 +233,7 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
 def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     """Left: ``B(q)`` as an annotated heat map; right: each diagonal entry split into links, rotors and
     payload (stacked horizontal bars). Used by the live panel."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     bare = p.replace(m_L=0.0)
     no_rotor = bare.replace(I_m=(0.0, 0.0, 0.0, 0.0))
     B = inertia(q, p)
@@ -294,7 +294,7 @@ def inertia_slider_figure(theta2_deg, masses, p=None, q=(0.0, 0.0, 0.5, 0.0),
     if not 0 <= int(active) < len(masses):
         raise ScaraError(f"active = {active} is not the index of one of the {len(masses)} payload masses")
     active = int(active)
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     configs = np.repeat(q[None, :], len(theta2_deg), axis=0)
     configs[:, 1] = np.radians(theta2_deg)

@@ -17,7 +17,8 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..errors import as_vector
-from ..kinematics import _params, link_frames
+from ..kinematics import link_frames
+from ..params import ScaraParams
 from ._common import AXIS_COLOURS, DASHES, PALETTE
 from .layout import _text_width, finish_layout
 
@@ -139,7 +140,7 @@ def frames_figure(q=None, p=None, triad: float = 0.18, height: int = _HEIGHT, ti
     >>> sorted({a.text for a in fig.layout.annotations if a.name == "label" and a.xref == "x"})[:3]
     ['1', '2, 3, 4, e', 'a1']
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(list(_DEFAULT_Q) if q is None else q, "q")
     frames = np.concatenate([np.eye(4)[None], link_frames(q, p)])  # b, 0, 1, 2, 3, 4, e (checks q)
     origins = frames[:, :3, 3]

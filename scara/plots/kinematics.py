@@ -13,7 +13,8 @@ import numpy as np
 import plotly.graph_objects as go
 
 from ..errors import ScaraError, UnreachableError, as_array, as_vector
-from ..kinematics import _params, ikine, jacobian, link_frames, pose
+from ..kinematics import ikine, jacobian, link_frames, pose
+from ..params import ScaraParams
 from ._common import AXIS_COLOURS, DASHES, JOINT_NAMES, PALETTE, as_list, slider
 from ._common import MAX_POINTS, check_count
 from .layout import _text_width, finish_layout
@@ -56,7 +57,7 @@ def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
 
     Raises :class:`ShapeError`/:class:`NonFiniteError` for a bad ``q``.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     if not (isinstance(triad, (int, float)) and math.isfinite(triad) and triad > 0):
         raise ScaraError(f"triad = {triad!r} must be a positive length in metres")
     frames = np.concatenate([np.eye(4)[None], link_frames(q, p)])  # b, 0, 1, 2, 3, 4, e
@@ -288,7 +289,7 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | 
     >>> [a.text for a in arm_figure([0.3, -1.2, 0.4, 0.1], names="annotations").layout.scene.annotations]
     ['b', '0', '1', '2', '3, 4, e']
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     if names not in ("text", "annotations"):
         raise ScaraError(f"names = {names!r} must be 'text' (a 3-D text trace) or 'annotations'")
@@ -318,7 +319,7 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
     >>> len(fig.layout.sliders[0].steps), fig.layout.sliders[0].steps[0].label
     (25, '-180')
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q0 = np.array([0.0, math.radians(60), 0.5, 0.0]) if q0 is None else as_vector(q0, "q0")
     if joint not in (0, 1, 2, 3):
         raise ScaraError(f"joint = {joint!r} must be 0 (theta1), 1 (theta2), 2 (d3) or 3 (theta4)")
@@ -363,7 +364,7 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
 def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0,
                  dash: str = "solid") -> go.Scatter:
     """The arm at ``q`` seen from above (base x-y plane) as one 2-D line trace: base axis, elbow, end effector."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     origins = link_frames(q, p)[:, :3, 3]
     pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
     colour = colour or PALETTE["arm"]
@@ -397,7 +398,7 @@ def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
     >>> [t.name for t in fig.data][1]
     'elbow +1'
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     x = as_vector(x, "x")
     fig = go.Figure()
     cx, cy = _circle(p.r_max)
@@ -452,7 +453,7 @@ def inverse_kinematics_slider_figure(x, values, component: int = 0, p=None, heig
     >>> [s.label for s in fig.layout.sliders[0].steps]
     ['0.90', '1.00', '1.01']
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     x = as_vector(x, "x")
     if component not in (0, 1, 2):
         raise ScaraError(f"component = {component!r} must be 0 (p_x), 1 (p_y) or 2 (p_z)")
@@ -499,7 +500,7 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     Limits: ``n`` from 3 to 10 000 samples (``MAX_POINTS``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work."""
     n = check_count(n, "n", MAX_POINTS, minimum=3, what="samples")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     t2 = np.linspace(-180.0, 180.0, n)
     det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
     fig = go.Figure()

@@ -18,12 +18,13 @@ import numpy as np
 import plotly.graph_objects as go
 
 from ..errors import ScaraError, as_array, as_vector, check_number, check_positive
-from ..kinematics import _params, ikine
-from ..manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
+from ..kinematics import ikine
+from .._manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, as_list, slider
 from ._common import MAX_GRID, MAX_POINTS, MAX_SWEEP, MAX_TARGETS, check_count
 from .kinematics import _circle, top_axes, top_view_arm
 from .layout import finish_layout
+from ..params import ScaraParams
 
 __all__ = [
     "REFERENCE_CONFIGURATIONS",
@@ -80,7 +81,7 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
     (``PALETTE["force"]``), so the two differ in greyscale too. Returns a list of ``go.Scatter``: the arm (if
     ``arm``), the velocity ellipse, [its axes], the force ellipse, [its axes].
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     force_scale = velocity_scale if force_scale is None else force_scale
     vel = velocity_ellipsoid(q, p, rows=(0, 1))
@@ -152,7 +153,7 @@ def reference_ellipses_figure(configurations: dict | None = None, p=None, veloci
     >>> [s.label for s in fig.layout.sliders[0].steps]
     ['q1', 'q2', 'q3', 'q4', 'q5']
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     configurations = dict(REFERENCE_CONFIGURATIONS if configurations is None else configurations)
     if not 2 <= len(configurations) <= 25:
         raise ScaraError(f"{len(configurations)} configurations: give between 2 and 25")
@@ -187,7 +188,7 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
 
     Trace 1 holds the ellipses of the step shown (named ``"velocity ellipses"`` or ``"force ellipses"``).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     pts = workspace_points() if points is None else as_array(points, "points", (4,), allow_batch=True)
     pts = np.atleast_2d(pts)
     check_count(len(pts), "the number of points", MAX_TARGETS, minimum=1, what="targets")
@@ -244,7 +245,7 @@ def manipulability_map_figure(p=None, n: int = 101, height: int = 520) -> go.Fig
     'heatmap'
     """
     n = check_count(n, "n", MAX_GRID, minimum=3, what="grid points per side")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     xs, ys, W = workspace_map(p, n)
     r_in, r_out = singular_radii(p)
     fig = go.Figure()
@@ -282,7 +283,7 @@ def duality_figure(q, p=None, n: int = 181, height: int = 440) -> go.Figure:
     Limits: ``n`` from 3 to 2001 samples (``MAX_SWEEP``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work."""
     n = check_count(n, "n", MAX_SWEEP, minimum=3, what="samples")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     t2 = np.linspace(-179.0, 179.0, n)
     sig = np.array([velocity_ellipsoid([q[0], math.radians(v), q[2], q[3]], p, rows=(0, 1)).lengths for v in t2])
@@ -316,7 +317,7 @@ def ellipse_slider_figure(theta2_deg=None, theta1: float = 0.0, p=None, scale: f
     >>> len(fig.layout.sliders[0].steps), fig.layout.sliders[0].currentvalue.prefix
     (25, 'θ2 (°) = ')
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     vals = np.linspace(180.0, -180.0, 25) if theta2_deg is None else as_array(theta2_deg, "theta2_deg",
                                                                                 (len(np.atleast_1d(theta2_deg)),))
     if not 2 <= len(vals) <= 61:
@@ -364,7 +365,7 @@ def base_turn_figure(theta1_deg=None, theta2: float = math.pi / 4, p=None, scale
     >>> [s.label for s in fig.layout.sliders[0].steps]
     ['0', '10', '20', '30', '40', '50', '60']
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     vals = np.arange(0.0, 61.0, 10.0) if theta1_deg is None else as_array(theta1_deg, "theta1_deg",
                                                                             (len(np.atleast_1d(theta1_deg)),))
     if not 2 <= len(vals) <= 61:

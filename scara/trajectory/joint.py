@@ -50,7 +50,8 @@ from ..errors import (
     ScaraError, ShapeError, UnreachableError, as_array, check_angles, check_count, check_flag, check_index,
     check_number, check_positive,
 )
-from ..kinematics import _params, ikine, jacobian_dot_kernel, jacobian_kernel, pose_kernel
+from ..kinematics import ikine, jacobian_dot_kernel, jacobian_kernel, pose_kernel
+from ..params import ScaraParams
 from .planner import MAX_SAMPLES, Trajectory, _samples
 from .timing import in_time_order, times as _times
 
@@ -255,7 +256,7 @@ class JointTrajectory:
         p_z, phi]`` in m and rad) by the direct kinematics ``x = k(q)``, ``xd = J_A qd``,
         ``xdd = J_A qdd + Jdot_A qd`` (chapter 1), for the arm ``p`` (default the one the trajectory was checked
         against)."""
-        pp = self.params if p is None else _params(p)
+        pp = self.params if p is None else ScaraParams.resolve(p)
         key = ("tool", pp)
         if key not in self._cache:
             out = np.empty((self.t.size, 12))
@@ -485,7 +486,7 @@ def joint_trajectory(points, times, kind: str = "cubic", *, velocities="mean", a
     if not np.all(np.isfinite(coef)):
         raise ScaraError("the polynomial coefficients overflow: the points, velocities or accelerations are too large "
                          "for the durations between the points")
-    pp = _params(p)
+    pp = ScaraParams.resolve(p)
     jt = JointTrajectory(kind=kind, points=q, times=t, velocities=v, accelerations=acc, coefficients=coef,
                          labels=labels, stops=np.flatnonzero(stop).tolist(), rule=rule, total=k_total * dt, dt=dt,
                          params=pp)
@@ -708,12 +709,12 @@ def compare_joint_space(traj: Trajectory, kinds=("cubic", "quintic"), extra: int
     itself). The operational row's joint motion is the exact one of the closed-form inverse kinematics,
     ``qd = J_A^-1 xd`` and ``qdd = J_A^-1 (xdd - Jdot_A qd)``."""
     from ..dynamics import inverse_dynamics  # noqa: PLC0415 - chapter 5's model, loaded when asked for
-    from ..simulate.reference import ikine_reference  # noqa: PLC0415
+    from .._simulate.reference import ikine_reference  # noqa: PLC0415
 
     _check_plan(traj)
     if isinstance(kinds, str) or not all(isinstance(k, str) for k in kinds):
         raise ScaraError(f"kinds must be a sequence of {sorted(KINDS)}, got {kinds!r}")
-    pp = _params(p)
+    pp = ScaraParams.resolve(p)
     ref = ikine_reference(traj, traj.params, elbow=traj.elbow)
     motions = [("operational", traj.motion_end, ref[:, :4], ref[:, 4:8], ref[:, 8:12], traj.speed(), 0.0)]
     for kind in kinds:

@@ -23,8 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_number, check_positive
-from ..kinematics import _params, check_reachable, ikine, is_reachable
-from ..manipulability import manipulability
+from ..kinematics import check_reachable, ikine, is_reachable
+from ..params import ScaraParams
+from .._manipulability import manipulability
 from .paths import GEOMETRY_TOL, Arc, Line, _fmt
 from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, in_time_order, times
 
@@ -365,7 +366,7 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
     phis = _orientations(wps, pos, phi, p, elbow)
     k0, k1, k_end, k_total = _schedule(nT, nA, total, dt)
 
-    p_checked = _params(p)
+    p_checked = ScaraParams.resolve(p)
     q0 = ikine(np.r_[pos[0], phis[0]], p_checked, elbow=elbow)
     built = dict(
         dt=dt, params=p_checked, elbow=elbow, q0=q0,

@@ -9,11 +9,11 @@ import ipywidgets as ipw
 import numpy as np
 from plotly.subplots import make_subplots
 
-from ..clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
-from ..kinematics import _params
+from .._clik import COMPONENTS, SEED_K, clik, clik2, second_order_gains
 from ..plots._common import MAX_POINTS, check_count, envelope, run_colour, run_label, thin
 from ..plots.layout import finish_layout, stacked_axes
 from ._common import LABEL_STYLE, LivePanel, PanelView, readable, table, trajectory_arg
+from ..params import ScaraParams
 
 __all__ = ["clik_panel"]
 
@@ -24,7 +24,7 @@ _METHODS = {"Jacobian inverse": "inverse", "Jacobian transpose": "transpose",
 def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
     ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain
-    ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara.clik.clik` (or
+    ``k0`` and relaxed component of the pseudo-inverse. Each change re-runs :func:`scara._clik.clik` (or
     ``clik2``) on ``traj`` (default: the 70 s reference of chapter 3) and redraws the position error (log),
     the orientation error and the manipulability, with the summary figures and the run time listed. Settings
     the package refuses (a gain past a stability limit, a run that diverges) are reported in the panel.
@@ -32,7 +32,7 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     ``points`` (samples per curve) runs from 2 to 10 000 (``scara.plots._common.MAX_POINTS``); outside, or not a
     whole number, or ``traj`` not a Trajectory, raises :class:`ScaraError` before any run."""
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     traj = trajectory_arg(traj, p)
     gain = dict(base=10, min=0.0, max=math.log10(2500.0), step=0.01, continuous_update=False, readout_format=".0f",
                 style=LABEL_STYLE)

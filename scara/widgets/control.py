@@ -11,10 +11,10 @@ import numpy as np
 from ..control import (
     AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController, control_summary,
 )
-from ..kinematics import _params
 from ..plots._common import MAX_POINTS, check_count, run_colour, run_label
 from ..plots.control import tuning_figure, tuning_series, tuning_signal, tuning_title
 from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value, trajectory_arg
+from ..params import ScaraParams
 
 __all__ = ["control_panel"]
 
@@ -63,9 +63,9 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     :class:`ScaraError` before any run."""
     payload = start_value(payload, 0.0, 10.0, "payload", "kg")
     points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     traj = trajectory_arg(traj, p)
-    from ..clik import clik2  # noqa: PLC0415
+    from .._clik import clik2  # noqa: PLC0415
 
     jref = clik2(traj, p=p)
     controls = {

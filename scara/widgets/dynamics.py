@@ -10,10 +10,10 @@ import numpy as np
 
 from ..dynamics import gravity, inertia
 from ..errors import ScaraError, as_vector, check_positive
-from ..kinematics import _params
 from ..plots.dynamics import inertia_figure
-from ..simulate import PDGravityController
+from .._simulate import PDGravityController
 from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, stroke_slider, table
+from ..params import ScaraParams
 
 __all__ = ["dynamics_panel"]
 
@@ -27,7 +27,7 @@ def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: 
     (N/m); redraws ``B(q)`` with the make-up of its diagonal and lists its eigenvalues, ``g(q)`` and the
     quill's steady-state sag ``m_L g0 / K_P3`` under PD plus gravity with a payload-free model.
     Only theta2 and the payload change ``B``: moving the other sliders shows it."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     controls = {
         "payload": ipw.FloatSlider(value=start_value(payload, 0.0, 20.0, "payload", "kg"), min=0.0, max=20.0,

@@ -8,10 +8,11 @@ import ipywidgets as ipw
 import numpy as np
 
 from ..errors import UnreachableError, as_vector
-from ..kinematics import _params, ikine, jacobian, pose
-from ..manipulability import manipulability
+from ..kinematics import ikine, jacobian, pose
+from .._manipulability import manipulability
 from ..plots.kinematics import arm_figure, inverse_kinematics_figure
 from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, stroke_slider, table
+from ..params import ScaraParams
 
 __all__ = ["kinematics_panel", "inverse_kinematics_panel"]
 
@@ -27,7 +28,7 @@ def kinematics_panel(q=None, p=None) -> LivePanel:
     Every slider position is a valid configuration, so this panel never refuses a setting.
     Returns a :class:`LivePanel` (display it as a cell's last expression).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = np.array([0.0, math.radians(60.0), 0.5 * (p.d3_min + p.d3_max), 0.0]) if q is None else as_vector(q, "q")
     controls = {
         "theta1": angle_slider(q[0], "theta1", "θ1 (°)"),
@@ -73,7 +74,7 @@ def inverse_kinematics_panel(x=None, p=None) -> LivePanel:
     and the figure is marked stale until a reachable target is typed. ``x`` is the starting target (4,) in
     m, m, m, rad (default the first point of the reference path of chapter 3, ``p0 = (0.18, 0.20, 0.5)`` m,
     with ``phi = 0``); an unreachable start raises :class:`UnreachableError`."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     x = np.array([0.18, 0.20, 0.5, 0.0]) if x is None else as_vector(x, "x")
     box = dict(step=0.01, continuous_update=False, style=LABEL_STYLE, layout=ipw.Layout(width="180px"))
     controls = {

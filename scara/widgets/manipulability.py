@@ -8,12 +8,12 @@ import ipywidgets as ipw
 import plotly.graph_objects as go
 
 from ..errors import ScaraError, as_vector
-from ..kinematics import _params
-from ..manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
+from .._manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
 from ..plots.kinematics import top_axes
 from ..plots.layout import finish_layout
 from ..plots.manipulability import ellipse_traces
 from ._common import LABEL_STYLE, LivePanel, PanelView, angle_slider, start_value, table
+from ..params import ScaraParams
 
 __all__ = ["manipulability_panel"]
 
@@ -28,7 +28,7 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
     scale within (0, 0.5]; values outside these ranges raise :class:`ScaraError`. A scale of 0 set on the
     slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table says
     so instead of printing a huge number."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     sc0 = start_value(scale, 0.0, 0.5, "scale", "m per m/s")
     if sc0 <= 0:
         raise ScaraError(f"scale = {sc0:g} must be > 0 (metres drawn per m/s and per N)")

@@ -202,7 +202,7 @@ def test_clik_loops_reproduce_scara_clik(run):
     from scara.trajectory import reference_trajectory
 
     traj = reference_trajectory()
-    from scara.clik import clik
+    from scara._clik import clik
 
     ours = clik(traj, "inverse")
     steps = 400
@@ -212,7 +212,7 @@ def test_clik_loops_reproduce_scara_clik(run):
 
 
 def test_closed_loops_reproduce_scara_simulate(run, A):
-    from scara.simulate import PDGravityController, ikine_reference, simulate
+    from scara._simulate import PDGravityController, ikine_reference, simulate
     from scara.trajectory import reference_trajectory
 
     traj = reference_trajectory()

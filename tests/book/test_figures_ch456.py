@@ -12,7 +12,7 @@ import pytest
 
 import scara
 from scara import plots
-from scara.clik import SEED_K
+from scara._clik import SEED_K
 from scara.dynamics import torque_breakdown
 from scara.plots.control import CONTROLLER_LABELS, CONTROLLER_DASHES, figure_slider, saturation_figure
 

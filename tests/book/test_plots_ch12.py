@@ -21,7 +21,7 @@ from scara.plots.layout import legend_entries
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone
 from scara.plots.manipulability import REFERENCE_CONFIGURATIONS, ellipse_xy, workspace_points
-from scara.manipulability import force_ellipsoid, velocity_ellipsoid
+from scara._manipulability import force_ellipsoid, velocity_ellipsoid
 
 P = ScaraParams()
 Q = np.array([0.3, -1.2, 0.4, 0.1])

@@ -16,7 +16,7 @@ import pytest
 from plotly.offline import get_plotlyjs
 
 from scara import ScaraError, ScaraParams, ikine, jacobian, manipulability, plan_path, pose, velocity_ellipsoid
-from scara.clik import SEED_K, clik, clik2, second_order_gains, transpose_stability
+from scara._clik import SEED_K, clik, clik2, second_order_gains, transpose_stability
 from scara.errors import UnstableError
 from scara.plots import ellipse_slider_figure
 from scara.plots._common import thin

@@ -30,7 +30,7 @@ def test_importing_every_module_compiles_nothing():
     brings in its cffi support) has not happened either."""
     code = """
 import json, sys
-import scara, scara.trajectory, scara.clik, scara.dynamics, scara.simulate, scara.control, scara.manipulability
+import scara, scara.trajectory, scara._clik, scara.dynamics, scara._simulate, scara.control, scara._manipulability
 import scara.control.robust, scara.control.adaptive, scara.control.operational
 from scara import _compile
 compiled = []
@@ -69,8 +69,8 @@ import json, inspect, types
 import scara
 names = list(scara.__all__)
 missing = [n for n in names if n not in dir(scara)]
-import scara.clik, scara.simulate, scara.manipulability
-from scara.clik import clik2
+import scara._clik, scara._simulate, scara._manipulability
+from scara._clik import clik2
 from scara import clik, simulate, manipulability, RobustController, reference_trajectory, inertia
 kinds = {n: type(getattr(scara, n)).__name__ for n in ("clik", "simulate", "manipulability")}
 ns = {}

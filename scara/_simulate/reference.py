@@ -8,7 +8,7 @@ import numpy as np
 
 from .._compile import kernel
 from ..errors import ScaraError, ShapeError, UnreachableError, as_array
-from ..kinematics import _params, ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel
+from ..kinematics import ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel
 from ..params import ScaraParams
 from .interface import MAX_SAMPLES, _sample_count
 
@@ -21,7 +21,7 @@ def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.n
     joint motion that realises ``x_d`` (no CLIK error). Raises :class:`~scara.UnreachableError` for an
     unreachable sample and :class:`~scara.ScaraError` at a singular configuration.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     x, xd, xdd = (as_array(_traj_field(traj, f), f"traj.{f}", (4,), allow_batch=True) for f in ("x", "xd", "xdd"))
     if not (x.ndim == 2 and x.shape == xd.shape == xdd.shape):
         raise ShapeError(f"traj.x, traj.xd, traj.xdd must all have shape (N, 4), got {x.shape}, {xd.shape}, "
@@ -70,7 +70,7 @@ def joint_setpoint(q_d, duration: float, dt: float = 1e-3) -> np.ndarray:
 
     ``duration`` must be a whole number of periods ``dt`` (``joint_setpoint(q, 1.0, dt=0.3)`` raises
     :class:`~scara.ScaraError` naming 0.9 s and 1.2 s rather than giving 0.9 s), with at most
-    :data:`~scara.simulate.interface.MAX_SAMPLES` samples. Like any joint reference array it carries no time:
+    :data:`~scara._simulate.interface.MAX_SAMPLES` samples. Like any joint reference array it carries no time:
     :func:`scara.simulate` takes its rows at its own ``dt``, so pass the same ``dt`` to both."""
     q_d = as_array(q_d, "q_d", (4,))
     n = _sample_count(duration, dt) + 1
@@ -100,9 +100,9 @@ def _joint_reference_array(joint_reference):
 
 def _clik2_reference(traj, p):
     try:
-        from ..clik import clik2  # noqa: PLC0415 - optional until chapter 4 exists
+        from .._clik import clik2  # noqa: PLC0415 - optional until chapter 4 exists
     except ImportError:
-        warnings.warn("scara.clik.clik2 is not available: joint references come from the closed-form inverse "
+        warnings.warn("scara._clik.clik2 is not available: joint references come from the closed-form inverse "
                       "kinematics of the trajectory instead", RuntimeWarning, stacklevel=3)
         return ikine_reference(traj, p)
     return _joint_reference_array(clik2(traj))

@@ -8,7 +8,6 @@ from .._compile import ArrayLayout
 from ..dynamics import gravity_kernel
 from ..errors import as_array
 from ..gains import gain_vector
-from ..kinematics import _params
 from ..params import ScaraParams
 from .interface import OK, Controller, _finite_result, control_law
 
@@ -72,7 +71,7 @@ class PDGravityController(Controller):
                  model: ScaraParams | None = None):
         self.K_P = gain_vector(K_P, "K_P", rule="nonnegative")
         self.K_D = gain_vector(K_D, "K_D", rule="nonnegative")
-        self.model = _params(model)
+        self.model = ScaraParams.resolve(model)
 
     def gains_array(self) -> np.ndarray:
         return PD_GAINS.pack(K_P=self.K_P, K_D=self.K_D)
@@ -80,7 +79,7 @@ class PDGravityController(Controller):
     def steady_state_error(self, plant: ScaraParams) -> np.ndarray:
         """Theoretical joint error ``q_d - q`` at rest: ``K_P^-1 (g_hat - g)``, i.e. only joint 3 errs by
         ``(m3_hat - m3) g0 / K_P3`` (m), shape (4,)."""
-        plant = _params(plant)
+        plant = ScaraParams.resolve(plant)
         e = np.zeros(4)
         with np.errstate(over="ignore", invalid="ignore"):
             e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf

@@ -8,7 +8,7 @@ import numpy as np
 
 from ._compile import kernel
 from .errors import ScaraError, as_array, check_angles, check_count, check_index
-from .kinematics import _params, elbow_cosine, jacobian, pose
+from .kinematics import elbow_cosine, jacobian, pose
 from .params import ScaraParams
 
 __all__ = [
@@ -44,7 +44,7 @@ def manipulability(q, p: ScaraParams | None = None):
     >>> round(manipulability([0.0, -math.pi / 2, 0.5, 0.0]), 3)
     0.25
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     if q.ndim == 1:
         return float(manipulability_kernel(q, p.a1, p.a2))
@@ -121,7 +121,7 @@ def velocity_ellipsoid(q, p: ScaraParams | None = None, rows=(0, 1, 2)) -> Ellip
     From the SVD ``J_P = U S V^T``: axes are the columns of ``U``, semi-axis lengths the singular values
     (Siciliano et al., section 3.9). ``rows=(0, 1)`` gives the horizontal ellipse.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     U, s, rows = _position_svd(q, p, rows)
     return Ellipsoid(pose(q, p)[:3], U, s, rows, "velocity")
 
@@ -132,7 +132,7 @@ def force_ellipsoid(q, p: ScaraParams | None = None, rows=(0, 1, 2)) -> Ellipsoi
     Same principal directions, reciprocal lengths ``1/sigma_i`` (``inf`` where ``sigma_i = 0``): where the arm
     moves fast it pushes weakly and the other way round.
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     U, s, rows = _position_svd(q, p, rows)
     with np.errstate(divide="ignore"):
         lengths = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), np.inf)
@@ -141,7 +141,7 @@ def force_ellipsoid(q, p: ScaraParams | None = None, rows=(0, 1, 2)) -> Ellipsoi
 
 def singular_radii(p: ScaraParams | None = None) -> tuple[float, float]:
     """Radii ``(|a1 - a2|, a1 + a2)`` of the circles where ``w = 0`` (arm folded, arm stretched)."""
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     return p.r_min, p.r_max
 
 
@@ -154,7 +154,7 @@ def workspace_map(p: ScaraParams | None = None, n: int = 201):
 
     ``n`` is a whole number of grid points per side, ``3 <= n <= MAX_GRID = 2001`` (checked before any work).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     n = check_count(n, "n", 3, MAX_GRID, "grid points per side")
     xs = np.linspace(-p.r_max, p.r_max, n)
     X, Y = np.meshgrid(xs, xs)

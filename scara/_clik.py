@@ -50,7 +50,7 @@ from ._compile import kernel
 from .errors import (ScaraError, ShapeError, UnreachableError, UnstableError, as_array, check_angles,
                      check_finite_result, check_flag)
 from .gains import gain_vector
-from .kinematics import (_elbow_sign, _params, check_reachable, elbow_cosine, geometry, ikine, is_reachable, jacobian_kernel,
+from .kinematics import (_elbow_sign, check_reachable, elbow_cosine, geometry, ikine, is_reachable, jacobian_kernel,
                          planar_det, planar_jacobian, planar_jacobian_at, planar_jacobian_dot, planar_position,
                          planar_trig, pose_kernel)
 from .params import ScaraParams
@@ -733,7 +733,7 @@ def start_configuration(traj, p: ScaraParams | None = None) -> np.ndarray:
     >>> from scara import reference_trajectory                   # doctest: +SKIP
     >>> start_configuration(reference_trajectory()).round(4)     # doctest: +SKIP
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     if not hasattr(traj, "x"):
         raise ScaraError(f"traj must have an attribute x (N, 4); {type(traj).__name__} has none")
     x = as_array(traj.x, "traj.x", (4,), allow_batch=True)
@@ -912,7 +912,7 @@ def transpose_stability(traj, K=None, p: ScaraParams | None = None, elbow: int |
     >>> from scara import reference_trajectory                     # doctest: +SKIP
     >>> transpose_stability(reference_trajectory()).scale_limit    # doctest: +SKIP
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     t, x, _, _, dt = _trajectory(traj, False, p)
     K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     mu = np.empty(len(t))
@@ -993,7 +993,7 @@ def clik(traj, method: str = "inverse", K=None, *, q0=None, p: ScaraParams | Non
     >>> bool(r.summary()["max_position_error"] < 1e-6)
     True
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     kept, k0v = _first_order_options(method, relaxed, k0, objective)
     K = gain_vector(K, "K", default=SEED_K, labels=COMPONENTS)
     lam2, w_thr = _damping(damping, damping_threshold, p)
@@ -1057,7 +1057,7 @@ def clik2(traj, K_P=None, K_D=None, *, q0=None, qd0=None, p: ScaraParams | None 
     The errors of :func:`clik`; :class:`UnstableError` when a component's gains put a discrete pole on or
     outside the unit circle (``dt K_P < K_D`` and ``2 dt K_D - dt^2 K_P < 4`` are required).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     KP0, KD0 = second_order_gains()
     K_P = gain_vector(K_P, "K_P", default=KP0, labels=COMPONENTS)
     K_D = gain_vector(K_D, "K_D", default=KD0, labels=COMPONENTS)
@@ -1083,7 +1083,7 @@ def dexterity(q, objective: str = "sin2", p: ScaraParams | None = None):
 
     ``q`` (4,) or (N, 4); returns a float or (N,).
     """
-    p = _params(p)
+    p = ScaraParams.resolve(p)
     if not isinstance(objective, str) or objective not in _OBJECTIVE_CODE:
         raise ScaraError(f"objective = {objective!r} is unknown; choose one of {', '.join(OBJECTIVES)}")
     q = check_angles(as_array(q, "q", (4,), allow_batch=True))

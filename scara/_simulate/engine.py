@@ -11,7 +11,6 @@ import numpy as np
 from .. import _compile
 from ..dynamics import dynamic_array
 from ..errors import ScaraError, UnstableError, check_positive
-from ..kinematics import _params
 from ..params import ScaraParams
 from .interface import _LAW_TYPE, DIVERGED, JOINT_LIMIT, LAW_FAILED, OK, SINGULAR_INERTIA, _compiled_law, _count
 from .plant import _plant_acceleration, _plant_constants, _rk4_step
@@ -168,7 +167,7 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     substeps : RK4 steps per sampling period (the torque is held over all of them), a whole number from 1 to
         :data:`MAX_SUBSTEPS` (1000).
     duration : length (s) of an open-loop run (``reference_kind == "none"``) without trajectory: a whole number
-        of periods ``dt``. A run has at most :data:`~scara.simulate.interface.MAX_SAMPLES` samples.
+        of periods ``dt``. A run has at most :data:`~scara._simulate.interface.MAX_SAMPLES` samples.
     limit : a state or torque entry above this magnitude stops the run with :class:`~scara.UnstableError`.
 
     The start state must have ``d3`` within the quill's stroke ``[plant.d3_min, plant.d3_max]``
@@ -178,7 +177,7 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     Returns :class:`SimulationResult`. Raises :class:`~scara.ScaraError` for inconsistent inputs and
     :class:`~scara.UnstableError` (with the time and cause) when the run diverges.
     """
-    plant = _params(plant)
+    plant = ScaraParams.resolve(plant)
     kind, dt, substeps = _check_run(controller, traj, dt, substeps)
     limit = check_positive(limit, "limit")
     ref, jref, x_d, xop, n = _references(kind, traj, joint_reference, duration, dt, plant)

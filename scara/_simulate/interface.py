@@ -113,7 +113,7 @@ def control_law(fn):
 
 def _compiled_law(law):
     """``law`` compiled for :data:`LAW_SIGNATURE` (loaded from the cache when it is there), ready to be passed
-    to :func:`~scara.simulate.engine.closed_loop_kernel`; returned unchanged without numba or when it is not a
+    to :func:`~scara._simulate.engine.closed_loop_kernel`; returned unchanged without numba or when it is not a
     numba dispatcher.
     Raises ``TypeError`` when it was already compiled for the same arguments with another return type."""
     if not _compile.COMPILED:
