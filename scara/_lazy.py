@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import ast
 import importlib
-import importlib.util
+import os
 import re
 import sys
 
@@ -18,13 +18,20 @@ _ALL = re.compile(r"^__all__\s*=\s*(\[.*?\])\s*$", re.S | re.M)
 _GROUP = re.compile(r"^_(EAGER|LAZY)\s*=\s*(\(.*?\))\s*$", re.S | re.M)
 
 
+def _source(module: str) -> str:
+    """The source file of ``module`` (``scara.control._common``), found from the top package's folder so that no
+    package on the way (``scara.control``) is imported."""
+    top, *parts = module.split(".")
+    base = os.path.join(os.path.dirname(sys.modules[top].__file__), *parts)
+    return os.path.join(base, "__init__.py") if os.path.isdir(base) else base + ".py"
+
+
 def exported(module: str) -> tuple[str, ...]:
     """The public names of ``module`` (a dotted name), read from its source without importing it: its literal
     ``__all__ = [...]``, or, for a package whose names come from its sub-modules (it declares ``_EAGER`` and
     ``_LAZY`` tuples and calls :func:`public_names`), the names of those sub-modules. Raises ``ImportError`` when
     the module has neither."""
-    spec = importlib.util.find_spec(module)
-    with open(spec.origin, encoding="utf-8") as fh:
+    with open(_source(module), encoding="utf-8") as fh:
         source = fh.read()
     match = _ALL.search(source)
     if match is not None:

@@ -194,6 +194,54 @@ def show_call(name, kwargs):
 # --------------------------------------------------------------------------------------------------
 # the result check
 # --------------------------------------------------------------------------------------------------
+def arrays_in(obj, path="args", depth=0, seen=None):
+    """Every NumPy array reachable from ``obj`` (through dicts, lists, tuples, dataclasses and objects'
+    attributes, as :func:`non_finite` walks them), as ``(path, array)`` pairs."""
+    if seen is None:
+        seen = set()
+    if depth > 6 or obj is None or isinstance(obj, (str, bytes, bool, numbers.Number, type, types.ModuleType)):
+        return
+    if isinstance(obj, np.ndarray):
+        if obj.dtype.kind != "O":
+            yield path, obj
+        return
+    if id(obj) in seen:
+        return
+    seen.add(id(obj))
+    if isinstance(obj, dict):
+        items = [(f"{path}[{k!r}]", v) for k, v in obj.items()]
+    elif isinstance(obj, (list, tuple)):
+        items = [(f"{path}[{i}]", v) for i, v in enumerate(obj)]
+    elif dataclasses.is_dataclass(obj):
+        items = [(f"{path}.{f.name}", getattr(obj, f.name)) for f in dataclasses.fields(obj)]
+    elif hasattr(obj, "__dict__") and not callable(obj):
+        items = [(f"{path}.{k}", v) for k, v in vars(obj).items() if not k.startswith("__")]
+    else:
+        return
+    for sub, v in items:
+        yield from arrays_in(v, sub, depth + 1, seen)
+
+
+class Ownership:
+    """The arrays a call is given, before the call: :meth:`problem` then says whether the call changed one, made
+    one read-only, or returned a result that shares memory with one (a result owns its arrays)."""
+
+    def __init__(self, kwargs):
+        self.inputs = [(path, a, a.copy(), a.flags.writeable) for path, a in arrays_in(kwargs)]
+
+    def problem(self, result):
+        for path, a, copy, writeable in self.inputs:
+            if a.flags.writeable != writeable:
+                return f"the call made the caller's array {path} read-only"
+            if a.shape != copy.shape or not np.array_equal(a, copy, equal_nan=True):
+                return f"the call changed the caller's array {path}"
+        for rpath, r in arrays_in(result, "result"):
+            for path, a, _, _ in self.inputs:
+                if r.size and a.size and np.shares_memory(r, a):
+                    return f"{rpath} shares memory with the caller's {path}"
+        return None
+
+
 def non_finite(obj, path="result", allow_inf=False, depth=0, seen=None, skip=()):
     """The path and value of the first number of ``obj`` that is not finite (NaN always, +-inf unless
     ``allow_inf``), or None. Paths in ``skip`` (documented non-finite values, e.g. ``"result[2]"``) are not

@@ -16,7 +16,7 @@ def _run(code: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-HEAVY = ["scara.trajectory", "scara.clik", "scara.dynamics", "scara.simulate", "scara.control", "scara.plots",
+HEAVY = ["scara.trajectory", "scara._clik", "scara.dynamics", "scara._simulate", "scara.control", "scara.plots",
          "scara.widgets", "scipy.linalg", "scipy.optimize", "scipy.integrate"]
 
 

@@ -150,26 +150,29 @@ def book_results(build: pathlib.Path) -> dict:
     for nb_path in notebooks:
         chapter = nb_path.stem
         nb = json.loads(nb_path.read_text())
+        outputs = [o for cell in nb["cells"] for o in cell.get("outputs", [])]
+        glued = nb_path.with_suffix(".glue.json")  # myst-nb keeps the values glued with display=False here
+        if glued.exists():
+            outputs += list(json.loads(glued.read_text()).values())
         figure = 0
-        for cell in nb["cells"]:
-            for output in cell.get("outputs", []):
-                data = output.get("data", {})
-                name = output.get("metadata", {}).get("scrapbook", {}).get("name")
-                plot = data.get("application/vnd.plotly.v1+json")
-                if name is not None:
-                    key = f"book/{chapter}/glue/{name}"
-                    if plot is not None:
-                        _figure_arrays(key, _decode(plot), out)
-                        continue
-                    text = "".join(data.get("text/plain", ""))
-                    number = _glued_number(text)
-                    if number is not None:
-                        _put(out, key, number)
-                    elif "text/html" not in data and not VARYING.search(key):
-                        out[key] = {"exact": text}
-                elif plot is not None:
-                    _figure_arrays(f"book/{chapter}/figure{figure}", _decode(plot), out)
-                    figure += 1
+        for output in outputs:
+            data = output.get("data", {})
+            name = output.get("metadata", {}).get("scrapbook", {}).get("name")
+            plot = data.get("application/vnd.plotly.v1+json")
+            if name is not None:
+                key = f"book/{chapter}/glue/{name}"
+                if plot is not None:
+                    _figure_arrays(key, _decode(plot), out)
+                    continue
+                text = "".join(data.get("text/markdown", data.get("text/plain", "")))
+                number = _glued_number(text)
+                if number is not None:
+                    _put(out, key, number)
+                elif "text/html" not in data and not VARYING.search(key):
+                    out[key] = {"exact": text}
+            elif plot is not None:
+                _figure_arrays(f"book/{chapter}/figure{figure}", _decode(plot), out)
+                figure += 1
     return out
 
 
