@@ -3,7 +3,7 @@
 For each method the script times
 
 * ``scara.clik`` / ``scara.clik2`` as the book calls them (input checks, reachability, stability check and the
-  compiled loop): the median of repeated runs, and the compiled loop alone (``result.run_time``);
+  compiled loop): the median of repeated runs, and the compiled loop alone (``result.elapsed``);
 * the same algorithm written the ordinary way, one step at a time with numpy: ``J`` built as an array each
   step, ``np.linalg.inv`` (inverse, second order), ``J.T @ K @ e`` (transpose), ``np.linalg.pinv``
   (pseudo-inverse with the null-space term); run once, in the same process;
@@ -11,7 +11,7 @@ For each method the script times
 and prints the time per run and per step, the ratio, and the largest joint difference between the two
 (they implement the same recursion, so they agree to rounding). Target (the budget of the verification appendix,
 section Speed): at most 20 ms per run.
-Times are this process's CPU time (``time.process_time``), as in ``run.py``; ``run_time`` is the package's
+Times are this process's CPU time (``time.process_time``), as in ``run.py``; ``elapsed`` is the package's
 own wall-clock timer around the loop.
 
 Run: ``python benchmarks/bench_clik.py [--repeats 20] [--numpy-seconds 70]``.
@@ -128,7 +128,7 @@ def main(argv=None):
             t0 = CLOCK()
             res = fn()
             calls.append(CLOCK() - t0)
-            loops.append(res.run_time)
+            loops.append(res.elapsed)
         call, loop = statistics.median(calls), statistics.median(loops)
         t0 = CLOCK()
         if name == "second_order":

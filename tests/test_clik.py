@@ -135,7 +135,7 @@ def test_summary_figures_are_what_they_say(runs):
     assert s["rms_position_error"] == pytest.approx(math.sqrt(np.mean(ep**2)))
     assert s["min_manipulability"] == pytest.approx(0.25 * np.abs(np.sin(r.q[:, 1])).min())
     assert s["mean_manipulability"] == pytest.approx(0.25 * np.abs(np.sin(r.q[:, 1])).mean())
-    assert s["run_time"] > 0
+    assert s["elapsed"] > 0
     with pytest.raises(ScaraError, match="settle"):
         r.summary(settle=-1)
 
@@ -310,7 +310,8 @@ def test_exact_singularity_is_reported():
         clik(tr, "inverse", q0=[0.0, 0.0, 0.5, 0.0])
     with pytest.raises(UnstableError, match="singular"):
         clik2(tr, q0=[0.0, 0.0, 0.5, 0.0], qd0=np.zeros(4))
-    with pytest.raises(UnstableError, match="singular; give qd0"):
+    with pytest.raises(UnstableError, match=r"start configuration q = \[0\.0, 0\.0, 0\.5, 0\.0\] is singular .*"
+                                            r"give the start speeds qd0"):
         clik2(tr, q0=[0.0, 0.0, 0.5, 0.0])
     r = clik(tr, "inverse", q0=[0.0, 0.0, 0.5, 0.0], damping=0.01)  # the damped inverse passes
     assert np.all(np.isfinite(r.q))
@@ -429,7 +430,7 @@ def test_initial_error_above_max_error_is_refused():
     assert clik(tr, q0=q0, max_error=1.0).e[0].max() > 0.1
     with pytest.raises(ScaraError, match="max_error"):
         clik(tr, max_error=0)
-    with pytest.raises(ScaraError, match="max_error = 'big'"):
+    with pytest.raises(ScaraError, match="max_error must be a number, got 'big'"):
         clik(tr, max_error="big")
     with pytest.raises(ScaraError, match="k0 = -1"):
         clik(tr, "pseudoinverse", k0=-1)
@@ -502,8 +503,9 @@ def test_q0_outside_the_stroke_is_refused(ref):
                                                r"d3 <= d3_max = 1 m"):
         clik(ref, q0=[q[0], q[1], 1.5, q[3]])
     short = ScaraParams(d3_min=0.0, d3_max=0.45)  # the reference's p_z = 0.5 needs d3 = 0.5 m
+    samples = SimpleNamespace(t=ref.t, x=ref.x, xd=ref.xd, dt=ref.dt)  # the samples alone: no params of their own
     with pytest.raises(UnreachableError, match=r"outside the stroke d3_min = 0 m <= d3 <= d3_max = 0\.45 m"):
-        clik(ref, p=short)
+        clik(samples, p=short)
 
 
 def test_damping_above_its_bound_is_refused(ref):
@@ -531,3 +533,119 @@ def test_overflowing_gains_name_K(ref):
         second_order_gains([1e300, 1.0, 1.0, 1.0])
     with pytest.raises(NonFiniteError, match=r"gives a non-finite largest eigenvalue mu of J_A J_A\^T K: K is too large"):
         transpose_stability(ref, K=1e300)
+
+
+# --------------------------------------------------------------------------------------------------
+# every input honoured or refused
+# --------------------------------------------------------------------------------------------------
+SHORT_PATH = ([[0.3, 0.2, 0.5], [0.5, 0.1, 0.4]], [0.3])
+
+
+def test_a_planned_trajectory_brings_its_own_parameters():
+    """With ``p=None`` every function uses ``traj.params`` (here an arm with a1 = 0.6 m, a2 = 0.4 m), not the
+    default arm; a ``p`` that disagrees with them is refused, naming the fields and both values."""
+    from scara import ScaraParams
+    own = ScaraParams(a1=0.6, a2=0.4)
+    tr = plan_path(*SHORT_PATH, total=0.4, p=own)
+    samples = SimpleNamespace(t=tr.t, x=tr.x, xd=tr.xd, xdd=tr.xdd, dt=tr.dt)  # the same samples, no params
+    np.testing.assert_array_equal(start_configuration(tr), ikine(tr.x[0], own, elbow=-1))
+    np.testing.assert_array_equal(start_configuration(tr), tr.q0)
+    for run in (lambda t, **kw: clik(t, **kw), lambda t, **kw: clik(t, "transpose", **kw), lambda t, **kw: clik2(t, **kw)):
+        r = run(tr)
+        np.testing.assert_array_equal(r.q, run(samples, p=own).q)
+        np.testing.assert_array_equal(r.q, run(tr, p=own).q)
+        np.testing.assert_allclose(r.x, [pose(q, own) for q in r.q], rtol=0, atol=1e-12)
+        assert np.abs(r.q[0] - run(samples).q[0]).max() > 0.1  # the default arm starts elsewhere
+    np.testing.assert_array_equal(transpose_stability(tr).mu, transpose_stability(samples, p=own).mu)
+    disagree = r"p has another geometry than traj.params.*a1 = 0\.5 in p, 0\.6 in traj\.params; a2 = 0\.5 in p, 0\.4 in traj\.params"
+    for call in (lambda: clik(tr, p=ScaraParams()), lambda: clik2(tr, p=ScaraParams()),
+                 lambda: start_configuration(tr, p=ScaraParams()), lambda: transpose_stability(tr, p=ScaraParams())):
+        with pytest.raises(ScaraError, match=disagree):
+            call()
+    with pytest.raises(ScaraError, match=r"traj.params must be a ScaraParams object .* got dict"):
+        clik(SimpleNamespace(t=tr.t, x=tr.x, xd=tr.xd, dt=tr.dt, params={"a1": 0.6}))
+    # masses and payload are not the path's business: a plant with a payload follows the path planned without it
+    heavy = own.with_payload(5.0)
+    np.testing.assert_array_equal(clik2(tr, p=heavy).q, clik2(tr).q)
+
+
+def test_the_start_follows_the_plans_elbow():
+    """A plan with ``elbow=+1`` starts (and stays) on that elbow in every run, and its transpose margin is
+    computed there; an elbow that is not +1 or -1 is refused rather than read as -1."""
+    up = plan_path(*SHORT_PATH, total=0.4, elbow=1)
+    q0 = start_configuration(up)
+    np.testing.assert_array_equal(q0, up.q0)
+    assert q0[1] > 0
+    for r in (clik(up), clik(up, "transpose"), clik(up, "pseudoinverse"), clik2(up)):
+        np.testing.assert_array_equal(r.q[0], q0)
+        assert np.all(r.q[:, 1] > 0), r.method
+    K = np.diag(SEED_K)
+    q = ikine(up.x[::50], elbow=1)
+    mu = [np.linalg.eigvals(jacobian(qi) @ jacobian(qi).T @ K).real.max() for qi in q]
+    np.testing.assert_allclose(transpose_stability(up).mu[::50], mu, rtol=1e-10)
+    tr = constant([0.4, 0.2, 0.5, 0.0], T=0.01)
+    for bad in (0, 2, "up", True):
+        tr.elbow = bad
+        with pytest.raises(ScaraError, match=rf"elbow = {bad!r} is not allowed"):
+            start_configuration(tr)
+        with pytest.raises(ScaraError, match=rf"elbow = {bad!r} is not allowed"):
+            clik(tr)
+
+
+@pytest.mark.parametrize("method, option, value, users", [
+    ("transpose", "damping", 0.05, "'inverse' and 'pseudoinverse'"),
+    ("transpose", "damping_threshold", 0.01, "'inverse' and 'pseudoinverse'"),
+    ("inverse", "k0", 2.0, "'pseudoinverse'"),
+    ("transpose", "k0", 0.0, "'pseudoinverse'"),
+    ("inverse", "objective", "manipulability", "'pseudoinverse'"),
+    ("transpose", "objective", "manipulability", "'pseudoinverse'"),
+    ("transpose", "relaxed", "y", "'pseudoinverse'"),
+])
+def test_options_the_method_does_not_use_are_refused(method, option, value, users):
+    tr = constant([0.4, 0.2, 0.5, 0.0], T=0.01)
+    with pytest.raises(ScaraError, match=rf"{option} = {value!r} only applies to method {users} .*"
+                                         rf"not to method='{method}'"):
+        clik(tr, method, **{option: value})
+
+
+def test_options_at_their_defaults_are_accepted_by_every_method():
+    tr = constant([0.4, 0.2, 0.5, 0.0], T=0.01)
+    base = {m: clik(tr, m) for m in ("inverse", "transpose", "pseudoinverse")}
+    for m, r in base.items():
+        np.testing.assert_array_equal(clik(tr, m, damping=0.0, objective="sin2").q, r.q)
+    np.testing.assert_array_equal(clik(tr, "pseudoinverse", k0=1.0, relaxed="x").q, base["pseudoinverse"].q)
+    damped = clik(tr, "pseudoinverse", damping=0.05, damping_threshold=0.3, objective="manipulability", k0=0.5)
+    assert damped.gains["damping"] == 0.05 and damped.gains["objective"] == "manipulability"
+
+
+def _arrays(obj):
+    """Every array a result holds: its array attributes and the arrays in its ``gains``."""
+    out = {k: v for k, v in vars(obj).items() if isinstance(v, np.ndarray)}
+    out.update({f"gains[{k}]": v for k, v in getattr(obj, "gains", {}).items() if isinstance(v, np.ndarray)})
+    return out
+
+
+def test_results_own_their_arrays_and_leave_the_inputs_alone():
+    tr = constant([0.4, 0.2, 0.5, 0.0], T=0.05)
+    q0 = ikine(tr.x[0], elbow=-1) + np.array([1e-4, 0.0, 0.0, 0.0])
+    qd0 = np.zeros(4)
+    K, KP, KD = np.array(SEED_K), *second_order_gains()
+    inputs = {"traj.t": tr.t, "traj.x": tr.x, "traj.xd": tr.xd, "traj.xdd": tr.xdd, "q0": q0, "qd0": qd0, "K": K,
+              "K_P": KP, "K_D": KD}
+    before = {k: (v.copy(), v.flags.writeable) for k, v in inputs.items()}
+    results = [clik(tr, m, K, q0=q0) for m in ("inverse", "transpose", "pseudoinverse")]
+    results += [clik2(tr, KP, KD, q0=q0, qd0=qd0), transpose_stability(tr, K)]
+    for r in results:
+        held = _arrays(r)
+        assert {"t", "x_d"} <= set(held) or {"t", "mu"} <= set(held)
+        for name, a in held.items():
+            for source, b in inputs.items():
+                assert not np.shares_memory(a, b), f"{type(r).__name__}.{name} shares memory with {source}"
+    np.testing.assert_array_equal(results[0].x_d, tr.x)
+    for k, v in inputs.items():
+        np.testing.assert_array_equal(v, before[k][0], err_msg=k)
+        assert v.flags.writeable == before[k][1], k
+    frozen = plan_path(*SHORT_PATH, total=0.4)
+    r = clik(frozen)
+    assert not frozen.x.flags.writeable and r.x_d.flags.writeable and not np.shares_memory(r.x_d, frozen.x)
+    assert not np.shares_memory(r.t, frozen.t)
