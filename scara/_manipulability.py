@@ -8,7 +8,7 @@ import numpy as np
 
 from ._compile import kernel
 from .errors import ScaraError, as_array, check_angles, check_count, check_index
-from .kinematics import elbow_cosine, jacobian, pose
+from .kinematics import REACH_TOL, elbow_cosine, jacobian, pose
 from .params import ScaraParams
 
 __all__ = [
@@ -48,7 +48,16 @@ def manipulability(q, p: ScaraParams | None = None):
     q = check_angles(as_array(q, "q", (4,), allow_batch=True))
     if q.ndim == 1:
         return float(manipulability_kernel(q, p.a1, p.a2))
-    return p.a1 * p.a2 * np.abs(np.sin(q[:, 1]))
+    out = np.empty(len(q))
+    _manipulability_batch(np.ascontiguousarray(q), p.a1, p.a2, out)
+    return out
+
+
+@kernel
+def _manipulability_batch(q, a1, a2, out):
+    """``out[k] = manipulability_kernel(q[k], a1, a2)`` for every row of ``q`` (N, 4)."""
+    for k in range(q.shape[0]):
+        out[k] = manipulability_kernel(q[k], a1, a2)
 
 
 @dataclass(frozen=True)
@@ -159,7 +168,7 @@ def workspace_map(p: ScaraParams | None = None, n: int = 201):
     xs = np.linspace(-p.r_max, p.r_max, n)
     X, Y = np.meshgrid(xs, xs)
     c2 = elbow_cosine(X, Y, p.a1, p.a2)
-    inside = np.abs(c2) <= 1.0 + 1e-12  # points on the singular circles count as reachable
+    inside = np.abs(c2) <= 1.0 + REACH_TOL  # the rule of ikine: points on the singular circles are reachable
     W = np.full(X.shape, np.nan)
     W[inside] = p.a1 * p.a2 * np.sqrt(np.clip(1.0 - c2[inside] ** 2, 0.0, None))
     return xs, xs.copy(), W

@@ -23,8 +23,9 @@ controller that holds a wrong model (e.g. no payload) simply passes its own ``dy
 
 Each formula is written once: the lumped parameters ``pi`` in :func:`lumped_parameters`, the inertia matrix
 ``B(q)`` in :func:`inertia_parts` (from ``pi``; the plant of :mod:`scara.simulate` and the controllers use it
-too), ``C(q, qd) v`` in :func:`coriolis_vector_kernel`, ``C qd + F qd + g`` in :func:`bias_kernel`, and the
-symmetric positive definite 4x4 solve in :func:`cholesky_solve4`.
+too), ``C(q, qd) v`` in :func:`coriolis_vector_kernel`, ``g(q)`` in :func:`gravity_kernel` (``C qd + F qd + g`` in
+:func:`bias_kernel` calls it), ``U(q)`` in :func:`potential_energy_kernel`, the split of ``B`` into links, rotors
+and payload in :func:`inertia_split`, and the symmetric positive definite 4x4 solve in :func:`cholesky_solve4`.
 
 *Public functions* (``inertia``, ``coriolis``, ...) check their inputs, take an optional
 :class:`~scara.ScaraParams` (``None`` is the robot of the introduction, without payload) and return new arrays.
@@ -52,7 +53,7 @@ __all__ = [
     "PI_NAMES", "PI_UNITS", "N_PI", "dynamic_parameters", "params_from_pi", "payload_from_pi",
     # public model
     "inertia", "coriolis", "gravity", "friction", "inverse_dynamics", "forward_dynamics", "regressor",
-    "kinetic_energy", "potential_energy", "total_energy", "torque_breakdown", "TORQUE_TERMS",
+    "kinetic_energy", "potential_energy", "total_energy", "torque_breakdown", "TORQUE_TERMS", "inertia_split",
     # kernels
     "inertia_kernel", "coriolis_kernel", "coriolis_vector_kernel", "gravity_kernel", "friction_kernel",
     "inverse_dynamics_kernel", "bias_kernel", "forward_dynamics_kernel", "regressor_kernel", "pi_kernel",
@@ -72,7 +73,9 @@ DYNAMIC_LAYOUT = ArrayLayout(("d0", 1), ("a1", 1), ("a2", 1), ("l1", 1), ("l2", 
 (DP_D0, DP_A1, DP_A2, DP_L1, DP_L2, DP_ML1, DP_ML2, DP_ML3, DP_IL1, DP_IL2, DP_IL4,
  DP_KR, DP_IM, DP_FM,  # first of four entries each
  DP_ML, DP_G0) = DYNAMIC_LAYOUT.offsets
+#: The length of the flat parameter array :func:`dynamic_array` (the ``model`` a compiled law receives).
 N_DP = DYNAMIC_LAYOUT.size
+#: The name of each entry of :func:`dynamic_array`, in order (``k_r1`` ... for the per-joint fields).
 DP_NAMES = tuple(name if size == 1 else f"{name}{i + 1}"
                  for name, size in DYNAMIC_LAYOUT.sizes.items() for i in range(size))
 
@@ -96,8 +99,10 @@ def dynamic_array(p: ScaraParams | None = None) -> np.ndarray:
 #: ``m_l2 l2``); ``F1`` to ``F4`` are the joints' viscous friction. Units: :data:`PI_UNITS`.
 PI_NAMES = ("m3", "m_l2 l2", "beta11", "beta12", "beta22", "beta13", "beta33", "beta14", "beta44",
             "F1", "F2", "F3", "F4")
+#: The unit of each entry of ``pi`` (:data:`PI_NAMES`).
 PI_UNITS = ("kg", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m", "kg", "kg m^2", "kg m^2",
             "N m s/rad", "N m s/rad", "N s/m", "N m s/rad")
+#: The number of dynamic parameters in ``pi``.
 N_PI = 13
 PI_M3 = 0
 
@@ -261,12 +266,16 @@ def friction_kernel(qd, dp, out):
 
 @kernel
 def bias_kernel(q, qd, dp, out):
-    """``n(q, qd) = C(q, qd) qd + F qd + g(q)`` (chapter 5), every torque but ``B qdd``, into ``out`` (4,)."""
+    """``n(q, qd) = C(q, qd) qd + F qd + g(q)`` (chapter 5), every torque but ``B qdd``, into ``out`` (4,): the
+    sum of :func:`friction_kernel`, the Coriolis entries and :func:`gravity_kernel`."""
+    gravity_kernel(q, dp, out)
+    g1, g2, g3, g4 = out[0], out[1], out[2], out[3]
     friction_kernel(qd, dp, out)
     c1, c2 = _coriolis_entries(q, qd, qd, dp)
-    out[0] += c1
-    out[1] += c2
-    out[2] -= lumped_parameters(dp).m3 * dp[DP_G0]
+    out[0] = out[0] + c1 + g1
+    out[1] = out[1] + c2 + g2
+    out[2] += g3
+    out[3] += g4
 
 
 @kernel
@@ -411,6 +420,13 @@ def kinetic_energy_kernel(q, qd, dp, work):
 
 
 @kernel
+def _potential_batch(q, dp, out):
+    """``out[k] = potential_energy_kernel(q[k], dp)`` for every row of ``q`` (N, 4)."""
+    for k in range(q.shape[0]):
+        out[k] = potential_energy_kernel(q[k], dp)
+
+
+@kernel
 def potential_energy_kernel(q, dp):
     """Potential energy ``U = g0 [(m_l1 + m_l2) d0 + m3 (d0 - d3)]`` (J), zero at the base-frame floor.
 
@@ -468,9 +484,10 @@ def gravity(q, p: ScaraParams | None = None) -> np.ndarray:
     >>> gravity([0, 0, 0.5, 0], ScaraParams().with_payload(5.0))
     array([   0.  ,    0.  , -147.15,    0.  ])
     """
+    p = ScaraParams.resolve(p)
     out = np.empty(4)
     gravity_kernel(_config(q), dynamic_array(p), out)
-    return check_finite_result(out, "g(q)", m3=ScaraParams.resolve(p).m3, g0=ScaraParams.resolve(p).g0)
+    return check_finite_result(out, "g(q)", m3=p.m3, g0=p.g0)
 
 
 def friction(p: ScaraParams | None = None) -> np.ndarray:
@@ -524,8 +541,32 @@ def forward_dynamics(q, qd, tau, p: ScaraParams | None = None) -> np.ndarray:
     q, qd, tau = _config(q), _vec(qd, "qd"), _vec(tau, "tau")
     code = forward_dynamics_kernel(q, qd, tau, dynamic_array(p), dynamics_workspace(), out)
     if code:
-        raise UnstableError("B(q) is not positive definite for these parameters; check the inertias and masses")
+        raise UnstableError(_singular_inertia_message(q, p))
     return check_finite_result(out, "qdd = B^-1 (tau - C qd - F qd - g)", q=q, qd=qd, tau=tau)
+
+
+#: the fields of :class:`~scara.ScaraParams` that give joint i inertia of its own (its diagonal entry of ``B``
+#: beyond what the joints after it add): joint 3 moves the quill and payload, joint 4 the link 4 and its rotor
+_JOINT_INERTIA_FIELDS = (
+    "I_l1, m_l1 l1^2, k_r1^2 I_m1 (link 1 and its rotor)",
+    "I_l2, m_l2 l2^2, m3 a2^2, k_r2^2 I_m2 (link 2, the quill it carries and its rotor)",
+    "m_l3 + m_L, k_r3^2 I_m3 (the quill, the payload and rotor 3)",
+    "I_l4, k_r4^2 I_m4 (link 4 and its rotor)",
+)
+
+
+def _singular_inertia_message(q, p) -> str:
+    """Why ``B(q)`` is not positive definite: the first joint whose pivot of the Cholesky factorisation is not
+    positive (it has no inertia of its own), with the fields that would give it some."""
+    B = inertia(q, p)
+    j = 3
+    for k in range(1, 5):
+        if not np.linalg.eigvalsh(B[:k, :k]).min() > 0.0:
+            j = k - 1
+            break
+    return (f"B(q) at q = {np.round(q, 6).tolist()} is not positive definite: joint {j + 1} has no inertia of its own "
+            f"(B{j + 1}{j + 1} = {B[j, j]:.6g}), so qdd = B^-1 (tau - C qd - F qd - g) does not exist; "
+            f"{_JOINT_INERTIA_FIELDS[j]} must not all be 0")
 
 
 def regressor(q, qd, qd_r, qdd_r, p: ScaraParams | None = None) -> np.ndarray:
@@ -588,7 +629,7 @@ def params_from_pi(pi, base: ScaraParams | None = None, rtol: float = 1e-9) -> S
     pi = as_array(pi, "pi", (N_PI,))
     rtol = check_positive(rtol, "rtol")
     m3, m2l2, b11, b12, b22, b13, b33, b14, b44 = (float(v) for v in pi[:9])
-    kr = np.asarray(base.k_r)
+    kr = np.asarray(base.k_r)  # every gear ratio is > 0 (ScaraParams refuses 0): I_m = beta / k_r is defined
 
     def close(a, b, what):
         if abs(a - b) > rtol * max(1.0, abs(a), abs(b)):
@@ -608,7 +649,11 @@ def params_from_pi(pi, base: ScaraParams | None = None, rtol: float = 1e-9) -> S
     else:
         I_m2 = base.I_m[1]
         close(b22, b12, "beta22 must equal beta12 when k_r2 = 1")
-    m_l2 = m2l2 / base.l2
+    if base.l2 > 0:
+        m_l2 = m2l2 / base.l2
+    else:  # a centre of mass on joint 2: pi holds m_l2 l2 = 0 and no trace of m_l2
+        m_l2 = base.m_l2
+        close(m2l2, 0.0, "m_l2 l2 must be 0 when l2 = 0")
     j2 = b22 - I_l4 - kr[1] ** 2 * I_m2 - I_m3 - I_m4
     I_l2 = j2 - m_l2 * base.l2 ** 2
     I_l1 = (b11 - j2 - m_l2 * base.a1 ** 2 - I_l4 - I_m2 - I_m3 - I_m4
@@ -652,12 +697,14 @@ def _kinetic_batch(q, qd, dp, work, out):
 def potential_energy(q, p: ScaraParams | None = None):
     """Gravitational potential energy ``U(q)`` (J) of chapter 5, zero at the base-frame floor; shape (4,) gives
     a float, (N, 4) gives (N,)."""
-    p = ScaraParams.resolve(p)
+    dp = dynamic_array(p)
     q = _config(q, allow_batch=True)
-    with np.errstate(over="ignore", invalid="ignore"):
-        u = p.g0 * ((p.m_l1 + p.m_l2) * p.d0 + p.m3 * (p.d0 - q[..., 2]))
-    check_finite_result(u, "potential energy U(q)", d3=q[..., 2])
-    return float(u) if q.ndim == 1 else u
+    if q.ndim == 1:
+        u = float(potential_energy_kernel(q, dp))
+    else:
+        u = np.empty(len(q))
+        _potential_batch(q, dp, u)
+    return check_finite_result(u, "potential energy U(q)", d3=q[..., 2])
 
 
 def total_energy(q, qd, p: ScaraParams | None = None):
@@ -669,6 +716,33 @@ def total_energy(q, qd, p: ScaraParams | None = None):
 
 #: the terms of :func:`torque_breakdown`, in display order
 TORQUE_TERMS = ("links", "rotors", "payload", "coriolis", "friction", "gravity")
+
+
+def _split_robots(p) -> tuple:
+    """The three robots whose differences split the model into links, rotors and payload: ``p`` without rotors
+    and payload (links and quill alone), ``p`` without payload, and ``p`` itself."""
+    p = ScaraParams.resolve(p)
+    bare = p.replace(m_L=0.0)
+    return bare.replace(I_m=(0.0, 0.0, 0.0, 0.0)), bare, p
+
+
+def inertia_split(q, p: ScaraParams | None = None) -> dict:
+    """``B(q)`` (chapter 5) split into what carries it: a dict of (4, 4) matrices whose sum is :func:`inertia`:
+
+    * ``links``: the inertia of links and quill alone (rotors and payload removed);
+    * ``rotors``: what the rotors add, the reflected inertia ``k_r^2 I_m`` and their coupling with the links
+      that carry them (a constant matrix);
+    * ``payload``: what the payload ``m_L`` adds.
+
+    The same split gives the inertial terms of :func:`torque_breakdown`.
+
+    >>> parts = inertia_split([0, 0, 0.5, 0], ScaraParams().with_payload(5.0))
+    >>> [round(float(parts[k][2, 2]), 6) for k in ("links", "rotors", "payload")]   # B33 = m_l3 + k_r3^2 I_m3 + m_L
+    [10.0, 12.5, 5.0]
+    """
+    links_only, bare, p = _split_robots(p)
+    B_links, B_bare, B = inertia(q, links_only), inertia(q, bare), inertia(q, p)
+    return {"links": B_links, "rotors": B_bare - B_links, "payload": B - B_bare}
 
 
 def torque_breakdown(q, qd, qdd, p: ScaraParams | None = None) -> dict:
@@ -683,22 +757,19 @@ def torque_breakdown(q, qd, qdd, p: ScaraParams | None = None) -> dict:
     * ``coriolis``: ``C qd`` of the robot without payload; ``friction``: ``F qd``; ``gravity``: ``g`` of the
       robot without payload (the quill's weight, on joint 3 only).
     """
-    p = ScaraParams.resolve(p)
-    bare = p.replace(m_L=0.0)
-    no_rotor = bare.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    links_only, bare, p = _split_robots(p)
     q = as_array(q, "q", (4,), allow_batch=True)
     qd = as_array(qd, "qd", (4,), allow_batch=True)
     qdd = as_array(qdd, "qdd", (4,), allow_batch=True)
     if not (q.shape == qd.shape == qdd.shape):
         raise ShapeError(f"q, qd and qdd must have the same shape, got {q.shape}, {qd.shape}, {qdd.shape}")
     zero = np.zeros_like(q)
-    links = inverse_dynamics(q, zero, qdd, no_rotor.replace(F_m=(0.0,) * 4, g0=0.0))
+    links = inverse_dynamics(q, zero, qdd, links_only.replace(F_m=(0.0,) * 4, g0=0.0))
     with_rotors = inverse_dynamics(q, zero, qdd, bare.replace(F_m=(0.0,) * 4, g0=0.0))
     coriolis_only = inverse_dynamics(q, qd, zero, bare.replace(F_m=(0.0,) * 4, g0=0.0))
     total_bare = inverse_dynamics(q, qd, qdd, bare)
     total = inverse_dynamics(q, qd, qdd, p)
     fr = np.asarray(p.F) * qd
-    grav = np.zeros_like(q)
-    grav[..., 2] = -bare.m3 * bare.g0
+    grav = inverse_dynamics(q, zero, zero, bare.replace(F_m=(0.0,) * 4))  # g(q): tau at rest, no acceleration
     return {"links": links, "rotors": with_rotors - links, "payload": total - total_bare,
             "coriolis": coriolis_only, "friction": fr, "gravity": grav}

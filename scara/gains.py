@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import ScaraError, ShapeError, _numeric_objects
+from .errors import ScaraError, ShapeError, _numeric_objects, is_bool
 
 __all__ = ["gain_vector", "RULES"]
 
@@ -42,7 +42,7 @@ def gain_vector(value, name: str, n: int = 4, *, default=None, rule: str = "posi
     if value is None:
         value = default
     what = f"{name} must be a number, a vector of {n} numbers or a diagonal {n}x{n} matrix"
-    if value is None or isinstance(value, (str, bytes, bool, np.bool_)):
+    if value is None or isinstance(value, (str, bytes)) or is_bool(value):
         raise ShapeError(f"{what}, got {value!r}")
     try:
         raw = np.asarray(value)

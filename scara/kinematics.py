@@ -25,11 +25,12 @@ from collections import namedtuple
 import numpy as np
 
 from ._compile import kernel
-from .errors import ScaraError, UnreachableError, UnstableError, as_array, check_angles, check_finite_result, _numbers
+from .errors import (ScaraError, UnreachableError, UnstableError, as_array, check_angles, check_finite_result,
+                     is_bool, _numbers)
 from .params import ScaraParams
 
 __all__ = [
-    "BASE_TRANSFORM",
+    "base_transform",
     "dh_table",
     "dh_matrix",
     "link_frames",
@@ -44,6 +45,9 @@ __all__ = [
     "jacobian_kernel",
     "jacobian_dot_kernel",
     "ikine_kernel",
+    "tool_motion_kernel",
+    "reach_kernel",
+    "REACH_TOL",
     "Geometry",
     "geometry",
     "planar_trig",
@@ -62,19 +66,28 @@ __all__ = [
 #: scale, beyond which the solve keeps no significant digit of a velocity
 SINGULAR_SIN = 1e-12
 
+#: How far outside the workspace a point may lie and still count as reachable (rounding at the rim): ``cos theta2``
+#: of (1.9) may exceed ``[-1, 1]`` by it, and ``d3 = d0 - p_z`` the stroke by it (m). The one tolerance of
+#: :func:`ikine`, :func:`is_reachable` and :func:`check_reachable` (see :func:`reach_kernel`).
+REACH_TOL = 1e-12
+
 
 
 def _elbow_sign(elbow) -> int:
     """``elbow`` checked to be +1 or -1 (an int or a float equal to it; not a bool, a string or an array)."""
-    ok = (not isinstance(elbow, (bool, np.bool_)) and isinstance(elbow, (int, float, np.integer, np.floating))
+    ok = (not is_bool(elbow) and isinstance(elbow, (int, float, np.integer, np.floating))
           and elbow in (1, -1))
     if not ok:
         raise ScaraError(f"elbow = {elbow!r} is not allowed: use +1 (sin theta2 >= 0) or -1 (sin theta2 <= 0)")
     return int(elbow)
 
 
-def BASE_TRANSFORM(p: ScaraParams | None = None) -> np.ndarray:
-    """``A_0^b`` (1.1): frame 0 hangs at height ``d0`` with its z axis pointing down."""
+def base_transform(p: ScaraParams | None = None) -> np.ndarray:
+    """``A_0^b`` (1.1): frame 0 hangs at height ``d0`` with its z axis pointing down.
+
+    >>> base_transform()[2].tolist()
+    [0.0, 0.0, -1.0, 1.0]
+    """
     p = ScaraParams.resolve(p)
     return np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, p.d0], [0, 0, 0, 1.0]])
 
@@ -195,6 +208,21 @@ IK_OUTSIDE_STROKE = 2
 
 
 @kernel
+def reach_kernel(x, a1, a2, d0, d3_min, d3_max):
+    """The one reachability rule, ``(code, c2)``: :data:`IK_OK` when the point ``x`` (its ``p_x, p_y, p_z``) lies
+    in the annulus, ``|c2| <= 1 + REACH_TOL`` with ``c2 = cos theta2`` of (1.9) (:func:`elbow_cosine`), and needs
+    ``d3 = d0 - p_z`` within the stroke ``[d3_min, d3_max]`` widened by :data:`REACH_TOL`;
+    :data:`IK_OUTSIDE_ANNULUS` or :data:`IK_OUTSIDE_STROKE` otherwise (also for a NaN coordinate)."""
+    c2 = elbow_cosine(x[0], -x[1], a1, a2)
+    if not (-1.0 - REACH_TOL <= c2 <= 1.0 + REACH_TOL):
+        return IK_OUTSIDE_ANNULUS, c2
+    d3 = d0 - x[2]
+    if not (d3_min - REACH_TOL <= d3 <= d3_max + REACH_TOL):
+        return IK_OUTSIDE_STROKE, c2
+    return IK_OK, c2
+
+
+@kernel
 def ikine_kernel(x, a1, a2, d0, d3_min, d3_max, elbow, out):
     """Closed-form inverse kinematics (1.8)-(1.10) written into ``out`` (4,).
 
@@ -202,19 +230,16 @@ def ikine_kernel(x, a1, a2, d0, d3_min, d3_max, elbow, out):
     ``c2 = (p_x^2 + y'^2 - a1^2 - a2^2) / (2 a1 a2)`` (:func:`elbow_cosine`), ``s2 = elbow sqrt(1 - c2^2)``,
     ``theta2 = atan2(s2, c2)``, ``theta1 = atan2(y', p_x) - atan2(a2 s2, a1 + a2 c2)``,
     ``d3 = d0 - p_z``, ``theta4 = phi - theta1 - theta2``.
-    Returns :data:`IK_OK`, :data:`IK_OUTSIDE_ANNULUS` or :data:`IK_OUTSIDE_STROKE` (``d3`` outside the stroke
-    ``[d3_min, d3_max]`` of :class:`~scara.ScaraParams`). The caller checks the code; ``out`` is left unchanged
-    on failure.
+    Returns the code of :func:`reach_kernel` (:data:`IK_OK`, :data:`IK_OUTSIDE_ANNULUS` or
+    :data:`IK_OUTSIDE_STROKE`, ``d3`` outside the stroke ``[d3_min, d3_max]`` of :class:`~scara.ScaraParams`). The
+    caller checks the code; ``out`` is left unchanged on failure.
     """
     px = x[0]
     py = -x[1]
-    c2 = elbow_cosine(px, py, a1, a2)
-    tol = 1e-12
-    if c2 > 1.0 + tol or c2 < -1.0 - tol:
-        return IK_OUTSIDE_ANNULUS
+    code, c2 = reach_kernel(x, a1, a2, d0, d3_min, d3_max)
+    if code != IK_OK:
+        return code
     d3 = d0 - x[2]
-    if d3 < d3_min - tol or d3 > d3_max + tol:
-        return IK_OUTSIDE_STROKE
     if c2 > 1.0:
         c2 = 1.0
     elif c2 < -1.0:
@@ -231,6 +256,33 @@ def ikine_kernel(x, a1, a2, d0, d3_min, d3_max, elbow, out):
     out[2] = d3
     out[3] = x[3] - t1 - t2
     return IK_OK
+
+
+@kernel
+def _reach_batch_kernel(pts, a1, a2, d0, d3_min, d3_max, out):
+    """``out[k] = reach_kernel(pts[k], ...)[0]`` for every row of ``pts`` (N, >= 3)."""
+    for k in range(pts.shape[0]):
+        out[k] = reach_kernel(pts[k], a1, a2, d0, d3_min, d3_max)[0]
+
+
+@kernel
+def tool_motion_kernel(q, qd, qdd, a1, a2, d0, out):
+    """The tool's motion ``[x, xd, xdd]`` (N, 12) of a joint motion ``q, qd, qdd`` (N, 4) each: ``x = k(q)``
+    (1.5), ``xd = J_A qd`` (1.6) and ``xdd = J_A qdd + Jdot_A qd`` (4.17), written into ``out`` (N, 12)."""
+    J = np.empty((4, 4))
+    Jd = np.empty((4, 4))
+    for k in range(q.shape[0]):
+        pose_kernel(q[k], a1, a2, d0, out[k, 0:4])
+        jacobian_kernel(q[k], a1, a2, J)
+        jacobian_dot_kernel(q[k], qd[k], a1, a2, Jd)
+        for i in range(4):
+            v = 0.0
+            a = 0.0
+            for j in range(4):
+                v += J[i, j] * qd[k, j]
+                a += J[i, j] * qdd[k, j] + Jd[i, j] * qd[k, j]
+            out[k, 4 + i] = v
+            out[k, 8 + i] = a
 
 
 @kernel
@@ -278,7 +330,7 @@ def link_frames(q, p: ScaraParams | None = None) -> np.ndarray:
     """
     p = ScaraParams.resolve(p)
     q = check_angles(as_array(q, "q", (4,)))
-    frames = [BASE_TRANSFORM(p)]
+    frames = [base_transform(p)]
     for row in dh_table(q, p):
         frames.append(frames[-1] @ dh_matrix(*row))
     frames.append(frames[-1].copy())  # A_e^4 = I
@@ -399,17 +451,22 @@ def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
 
 def is_reachable(points, p: ScaraParams | None = None) -> np.ndarray:
     """Boolean mask: which points (shape (3,)/(4,) or (N, 3)/(N, 4), positions first) the arm can reach: inside
-    the annulus ``|a1 - a2| <= r <= a1 + a2`` with ``d3 = d0 - p_z`` in the stroke ``[p.d3_min, p.d3_max]``.
-    A point holding NaN or inf is not reachable (False)."""
+    the annulus ``|a1 - a2| <= r <= a1 + a2`` with ``d3 = d0 - p_z`` in the stroke ``[p.d3_min, p.d3_max]``, by
+    the rule :func:`ikine` applies (:func:`reach_kernel`, tolerance :data:`REACH_TOL`), so that a point is
+    reachable exactly when :func:`ikine` solves it. A point holding NaN or inf is not reachable (False).
+
+    >>> is_reachable([[1.0, 0.0, 0.5], [1.0 + 1e-9, 0.0, 0.5]]).tolist()
+    [True, False]
+    """
     p = ScaraParams.resolve(p)
     pts = _numbers(points, "points must be an array of numbers")
     if pts.ndim not in (1, 2) or pts.shape[-1] not in (3, 4):
         raise ScaraError(f"points must have shape (3,), (4,), (N, 3) or (N, 4), got {pts.shape}")
-    r = np.hypot(pts[..., 0], pts[..., 1])
-    d3 = p.d0 - pts[..., 2]
-    tol = 1e-12
-    return ((r >= p.r_min - tol) & (r <= p.r_max + tol) & (d3 >= p.d3_min - tol) & (d3 <= p.d3_max + tol)
-            & np.all(np.isfinite(pts), axis=-1))
+    rows = np.ascontiguousarray(pts.reshape(-1, pts.shape[-1]))
+    codes = np.empty(len(rows), dtype=np.int64)
+    _reach_batch_kernel(rows, p.a1, p.a2, p.d0, p.d3_min, p.d3_max, codes)
+    ok = (codes == IK_OK) & np.all(np.isfinite(rows), axis=-1)
+    return ok.reshape(pts.shape[:-1])
 
 
 def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -> None:
@@ -420,26 +477,36 @@ def check_reachable(point, p: ScaraParams | None = None, label: str = "point") -
     except ValueError:  # a ragged sequence: as_array names it
         three = False
     x = as_array(point, label, (3,)) if three else as_array(point, label, (4,))
-    if is_reachable(x, p):
-        return
-    r = math.hypot(x[0], x[1])
-    code = IK_OUTSIDE_ANNULUS if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12) else IK_OUTSIDE_STROKE
-    raise UnreachableError(_unreachable_message(x, code, p, label))
+    code = reach_kernel(x, p.a1, p.a2, p.d0, p.d3_min, p.d3_max)[0]
+    if code != IK_OK:
+        raise UnreachableError(_unreachable_message(x, code, p, label))
 
 
 def check_regular(q, p: ScaraParams | None = None, what: str = "the start configuration") -> np.ndarray:
     """Return ``q`` after checking that ``J_A(q)`` can be inverted: the one rule for "is this configuration
-    singular?" wherever the package needs ``J_A^-1`` (a start velocity ``qd0 = J_A^-1 xd_d(0)``, a CLIK start).
-    ``det J_A = a1 a2 sin theta2`` (1.9), so ``q`` is refused when ``|sin theta2| <= SINGULAR_SIN``, with an
-    :class:`~scara.UnstableError` naming ``what``, ``q`` and ``theta2``.
+    singular?" wherever the package needs ``J_A^-1`` (a start velocity ``qd0 = J_A^-1 xd_d(0)``, a CLIK start, the
+    joint reference of the closed-form inverse kinematics). ``det J_A = a1 a2 sin theta2`` (1.9), so ``q`` is
+    refused when ``|sin theta2| <= SINGULAR_SIN``, with an :class:`~scara.UnstableError` naming ``what``, ``q``
+    and ``theta2``. ``q`` has shape (4,) or (N, 4) (a series: the message names its first singular sample); the
+    result is a copy.
 
     >>> check_regular([0.0, 1.0, 0.5, 0.0]).tolist()
     [0.0, 1.0, 0.5, 0.0]
     """
     ScaraParams.resolve(p)
-    q = as_array(q, "q", (4,))
-    if abs(math.sin(q[1])) <= SINGULAR_SIN:
-        raise UnstableError(f"{what} q = {np.round(q, 6).tolist()} is singular (theta2 = {q[1]:.6g} rad; "
-                            f"det J_A = a1 a2 sin theta2 vanishes): J_A cannot be inverted there; give the start "
-                            f"speeds qd0 explicitly, or start away from theta2 = 0 and pi")
-    return q
+    q = as_array(q, "q", (4,), allow_batch=True)
+    if q.ndim == 1:
+        k, qk = -1, q
+        singular = abs(math.sin(q[1])) <= SINGULAR_SIN
+    else:
+        bad = np.abs(np.sin(q[:, 1])) <= SINGULAR_SIN
+        singular = bool(bad.any())
+        k = int(np.argmax(bad))
+        qk = q[k]
+    if singular:
+        where = what if k < 0 else f"{what} at sample {k}:"
+        hint = ("give the start speeds qd0 explicitly, or start away from theta2 = 0 and pi" if k < 0 else
+                "keep the path off the circles r = |a1 - a2| and r = a1 + a2, where theta2 = 0 or pi")
+        raise UnstableError(f"{where} q = {np.round(qk, 6).tolist()} is singular (theta2 = {qk[1]:.6g} rad; "
+                            f"det J_A = a1 a2 sin theta2 vanishes): J_A cannot be inverted there; {hint}")
+    return q.copy()

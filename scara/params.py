@@ -11,6 +11,15 @@ from .errors import ScaraError, _numbers
 __all__ = ["ScaraParams"]
 
 
+#: the range of the arm's lengths (m): ``a1``, ``a2`` and ``d0`` lie in ``[MIN_LENGTH, MAX_LENGTH]``, the other
+#: lengths (``l1``, ``l2``, the stroke) in ``[0, MAX_LENGTH]``. A micrometre to a thousand kilometres: outside it
+#: the squares of the kinematics and dynamics underflow or overflow (an arm of 1e-300 m or 1e308 m)
+MIN_LENGTH, MAX_LENGTH = 1e-6, 1e6
+LENGTHS = ("d0", "a1", "a2", "l1", "l2", "d3_min", "d3_max")
+#: the largest mass (kg), inertia (kg m^2), gear ratio, friction or gravity a field accepts
+MAX_FIELD = 1e9
+
+
 def _vec(*values):
     return field(default_factory=lambda: tuple(float(v) for v in values))
 
@@ -61,6 +70,12 @@ class ScaraParams:
                     raise ScaraError(f"{f.name} must have 4 entries (one per joint), got shape {arr.shape}")
                 if not np.all(np.isfinite(arr)) or np.any(arr < 0):
                     raise ScaraError(f"{f.name} = {arr.tolist()} must be finite and >= 0")
+                if f.name == "k_r" and np.any(arr <= 0):
+                    raise ScaraError(f"k_r = {arr.tolist()} must be > 0 for every joint: a gear ratio of 0 would leave "
+                                     f"the joint undriven by its motor")
+                if np.any(arr > MAX_FIELD):
+                    raise ScaraError(f"{f.name} = {arr.tolist()} has an entry above {MAX_FIELD:g}, the largest value a "
+                                     f"field accepts (beyond it the model's products overflow or lose every digit)")
                 object.__setattr__(self, f.name, tuple(float(x) for x in arr))
             else:
                 if isinstance(v, (bool, np.bool_, str, bytes, tuple, list, dict, np.ndarray)):
@@ -71,10 +86,17 @@ class ScaraParams:
                     raise ScaraError(f"{f.name} must be a number, got {v!r}") from exc
                 if not np.isfinite(x) or x < 0:
                     raise ScaraError(f"{f.name} = {x} must be finite and >= 0")
+                if x > (MAX_LENGTH if f.name in LENGTHS else MAX_FIELD):
+                    raise ScaraError(f"{f.name} = {x:g} is above {MAX_LENGTH if f.name in LENGTHS else MAX_FIELD:g}, the "
+                                     f"largest value the field accepts (beyond it the model's products overflow or lose "
+                                     f"every digit)")
                 object.__setattr__(self, f.name, x)
         for name in ("a1", "a2", "d0"):
             if getattr(self, name) <= 0:
                 raise ScaraError(f"{name} = {getattr(self, name)} must be > 0 (a length of the arm)")
+            if getattr(self, name) < MIN_LENGTH:
+                raise ScaraError(f"{name} = {getattr(self, name):g} m is below {MIN_LENGTH:g} m, the shortest link the "
+                                 f"package accepts (shorter, the kinematics' squares and products lose every digit)")
         if not self.d3_min < self.d3_max:
             raise ScaraError(f"the quill's stroke d3_min = {self.d3_min:g} m .. d3_max = {self.d3_max:g} m must be a "
                              f"range: d3_min < d3_max")
@@ -93,6 +115,34 @@ class ScaraParams:
             return _DEFAULT
         if not isinstance(p, cls):
             raise ScaraError(f"p must be a ScaraParams object or None, got {type(p).__name__}")
+        return p
+
+    #: the fields a planned path depends on: the links' lengths, the height of frame 0 and the quill's stroke
+    GEOMETRY = ("a1", "a2", "d0", "d3_min", "d3_max")
+
+    @classmethod
+    def for_trajectory(cls, traj, p=None, name: str = "p") -> "ScaraParams":
+        """The parameters a computation on the planned ``traj`` uses: ``p`` when given (checked to have the
+        geometry, :attr:`GEOMETRY`, that ``traj`` was planned and checked with, ``traj.params``), else
+        ``traj.params``, else ``ScaraParams()`` for a trajectory that carries none. Masses and payloads may
+        differ (a plant carrying a payload follows a path planned without it); a ``p`` of another geometry is
+        refused with a :class:`~scara.ScaraError` naming each field and both values (``name`` names ``p`` in
+        the message, e.g. ``"plant"``).
+        """
+        own = getattr(traj, "params", None)
+        if own is None:
+            return cls.resolve(p)
+        if not isinstance(own, cls):
+            raise ScaraError(f"traj.params must be a ScaraParams object (the parameters the trajectory was planned "
+                             f"with) or None, got {type(own).__name__}")
+        if p is None:
+            return own
+        p = cls.resolve(p)
+        diff = [f for f in cls.GEOMETRY if getattr(p, f) != getattr(own, f)]
+        if diff:
+            shown = "; ".join(f"{f} = {getattr(p, f)!r} in {name}, {getattr(own, f)!r} in traj.params" for f in diff)
+            raise ScaraError(f"{name} has another geometry than traj.params, the arm the trajectory was planned for "
+                             f"({shown}); plan the trajectory for this arm (plan_path(..., p={name}))")
         return p
 
     # -- copies -------------------------------------------------------------------------------------

@@ -441,3 +441,38 @@ def test_angles_beyond_max_angle_are_refused_by_the_dynamics():
 def test_params_from_pi_refuses_a_bad_rtol():
     with pytest.raises(ScaraError, match=r"rtol must be a number, got \{\}"):
         params_from_pi(dynamic_parameters(), rtol={})
+
+
+def test_inertia_split_is_the_split_of_torque_breakdown():
+    """One split of B into links, rotors and payload: its parts sum to B, and the inertial terms of
+    torque_breakdown are those parts times qdd."""
+    p = ScaraParams().with_payload(5.0)
+    q = np.array([0.3, -1.1, 0.4, 0.2])
+    qdd = np.array([1.0, 2.0, -1.0, 0.5])
+    parts = dyn.inertia_split(q, p)
+    assert sorted(parts) == ["links", "payload", "rotors"]
+    assert np.allclose(parts["links"] + parts["rotors"] + parts["payload"], inertia(q, p), rtol=1e-15, atol=0)
+    assert np.allclose(parts["payload"], inertia(q, p) - inertia(q, p.replace(m_L=0.0)), rtol=0, atol=0)
+    br = dyn.torque_breakdown(q, np.zeros(4), qdd, p)
+    assert np.allclose(br["links"], parts["links"] @ qdd, rtol=1e-14, atol=1e-12)
+    assert np.allclose(br["rotors"], parts["rotors"] @ qdd, rtol=1e-14, atol=1e-12)
+    assert np.array_equal(br["gravity"], gravity(q, p.replace(m_L=0.0)))
+
+
+def test_gravity_and_potential_energy_are_written_once():
+    """g(q) of the bias term, of torque_breakdown and of gravity() are the gravity kernel's; U(q) of a series
+    is the kernel's at every sample."""
+    p = ScaraParams().with_payload(2.0)
+    q = np.array([[0.3, -1.1, 0.4, 0.2], [1.0, 0.5, 0.9, -0.3]])
+    zero = np.zeros_like(q)
+    at_rest = inverse_dynamics(q, zero, zero, p.replace(F_m=(0.0,) * 4))
+    assert np.array_equal(at_rest, np.array([gravity(r, p) for r in q]))
+    u = potential_energy(q, p)
+    assert u.shape == (2,) and all(u[k] == dyn.potential_energy_kernel(q[k], dynamic_array(p)) for k in range(2))
+    assert potential_energy(q[0], p) == u[0]
+
+
+def test_a_zero_gear_ratio_never_reaches_params_from_pi():
+    """Recovering I_m = beta / k_r needs every k_r > 0: the parameters refuse a zero where it is given."""
+    with pytest.raises(ScaraError, match=r"k_r = \[1\.0, 1\.0, 0\.0, 20\.0\] must be > 0 for every joint"):
+        params_from_pi(dynamic_parameters(ScaraParams()), ScaraParams(k_r=(1.0, 1.0, 0.0, 20.0)))

@@ -259,3 +259,63 @@ def test_wrong_types_raise_scara_errors():
         ikine([0.5, 0.2, 0.5, 0.0], elbow=np.array([1]))
     with pytest.raises(ScaraError, match=r"points must be an array of numbers, got 'abc'"):
         is_reachable("abc")
+
+
+def test_base_transform_is_frame_0_at_height_d0_pointing_down():
+    from scara.kinematics import base_transform
+
+    A = base_transform(P.replace(d0=1.2))
+    assert np.array_equal(A, np.array([[1.0, 0, 0, 0], [0, -1.0, 0, 0], [0, 0, -1.0, 1.2], [0, 0, 0, 1.0]]))
+    assert np.array_equal(link_frames(np.zeros(4))[0], base_transform())
+
+
+@pytest.mark.parametrize("r_over_rim", [-1e-9, -1e-13, 0.0, 1e-13, 4e-13, 6e-13, 1e-12, 1e-9])
+@pytest.mark.parametrize("rim", ["outer", "inner"])
+def test_is_reachable_and_ikine_apply_one_rule_at_the_rim(r_over_rim, rim):
+    """At the rim of the annulus a point is reachable exactly when ikine solves it (one tolerance)."""
+    p = P.replace(a2=0.3) if rim == "inner" else P
+    r = p.r_max + r_over_rim if rim == "outer" else p.r_min - r_over_rim
+    x = np.array([r * math.cos(0.4), r * math.sin(0.4), 0.5, 0.0])
+    try:
+        ikine(x, p)
+        solved = True
+    except UnreachableError:
+        solved = False
+    assert bool(is_reachable(x, p)) == solved
+    try:
+        check_reachable(x, p)
+        checked = True
+    except UnreachableError:
+        checked = False
+    assert checked == solved
+
+
+def test_is_reachable_batches_and_refuses_nan():
+    pts = np.array([[0.5, 0.2, 0.5], [np.nan, 0.2, 0.5], [2.0, 0.0, 0.5], [0.5, 0.2, np.inf]])
+    assert is_reachable(pts).tolist() == [True, False, False, False]
+    assert is_reachable(pts[0]).shape == ()
+
+
+def test_tool_motion_kernel_is_the_direct_kinematics_and_its_derivatives():
+    from scara.kinematics import tool_motion_kernel
+
+    rng = np.random.default_rng(3)
+    q, qd, qdd = (rng.uniform(-1, 1, (5, 4)) for _ in range(3))
+    q[:, 2] = 0.5
+    out = np.empty((5, 12))
+    tool_motion_kernel(q, qd, qdd, P.a1, P.a2, P.d0, out)
+    for k in range(5):
+        assert np.allclose(out[k, :4], pose(q[k]), rtol=0, atol=1e-15)
+        assert np.allclose(out[k, 4:8], jacobian(q[k]) @ qd[k], rtol=0, atol=1e-15)
+        assert np.allclose(out[k, 8:12], jacobian(q[k]) @ qdd[k] + jacobian_dot(q[k], qd[k]) @ qd[k], rtol=0,
+                           atol=1e-15)
+
+
+def test_check_regular_takes_a_series():
+    from scara import UnstableError
+    from scara.kinematics import check_regular
+
+    q = np.array([[0.0, 1.0, 0.5, 0.0], [0.0, 0.0, 0.5, 0.0]])
+    with pytest.raises(UnstableError, match=r"the path at sample 1: q = \[0\.0, 0\.0, 0\.5, 0\.0\] is singular"):
+        check_regular(q, what="the path")
+    assert check_regular(q[:1]).shape == (1, 4)

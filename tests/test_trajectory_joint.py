@@ -232,7 +232,7 @@ def test_spline_rule_is_scipys_clamped_cubic_spline(seq, v0, v1):
 
     q, t = seq
     t = t - t[0]  # a start velocity needs the motion to start at 0 (the arm rests before its first point)
-    jt = joint_trajectory(q, t, "cubic", velocities="spline", v0=v0, v1=v1, dt=0.01, check=False)
+    jt = joint_trajectory(q, t, "cubic", velocities="spline", qd_start=v0, qd_end=v1, dt=0.01, check=False)
     for i in range(4):
         cs = CubicSpline(t, q[:, i], bc_type=((1, v0[i]), (1, v1[i])))
         scale = np.max(np.abs(q[:, i])) + np.max(np.abs(cs(t, 1))) * np.max(np.diff(t)) + 1.0
@@ -339,18 +339,18 @@ def test_the_quill_stroke_is_checked_at_the_points_and_between_them():
         joint_trajectory([[0, 0, 0.5, 0], [0, 0, 1.2, 0]], [0, 1])
     # from d3 = 0.95 m at 0.5 m/s towards 0.99 m in 1 s: the cubic overshoots the bottom of the stroke
     with pytest.raises(UnreachableError) as info:
-        cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, v0=[0, 0, 0.5, 0])
+        cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, qd_start=[0, 0, 0.5, 0])
     msg = str(info.value)
     assert "between the points" in msg and "segment p0->p1" in msg and "d3_max = 1 m" in msg
     # the extreme, found independently: the root of qd of joint 3 in (0, 1)
-    jt = cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, v0=[0, 0, 0.5, 0], check=False)
+    jt = cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, qd_start=[0, 0, 0.5, 0], check=False)
     c = jt.coefficients[0, 2]
     roots = [r.real for r in np.roots(P.polyder(c)[::-1]) if 0 < r.real < 1]
     peak = max(P.polyval(r, c) for r in roots)
     assert peak > p.d3_max and f"reaches {peak:.6g} m" in msg
     assert jt.q[:, 2].max() <= peak + 1e-12
     # a stroke that allows it
-    cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, v0=[0, 0, 0.5, 0], p=p.replace(d3_max=1.5))
+    cubic([0, 0, 0.95, 0], [0, 0, 0.99, 0], 1.0, qd_start=[0, 0, 0.5, 0], p=p.replace(d3_max=1.5))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -374,15 +374,15 @@ Q2 = [[0, 0, 0.5, 0], [1, 0, 0.5, 0]]
     (lambda: joint_trajectory(Q2, [0, 1], velocities="fast"), ScaraError, ["velocities = 'fast'", "mean"]),
     (lambda: joint_trajectory(Q2, [0, 1], "quintic", accelerations="zero"), ScaraError, ["accelerations = 'zero'"]),
     (lambda: joint_trajectory(Q2, [0, 1], velocities=np.zeros((3, 4))), ShapeError, ["(2, 4)", "(3, 4)"]),
-    (lambda: joint_trajectory(Q2, [0, 1], a0=1.0), ScaraError, ["a cubic cannot take accelerations"]),
+    (lambda: joint_trajectory(Q2, [0, 1], qdd_start=1.0), ScaraError, ["a cubic cannot take accelerations"]),
     (lambda: joint_trajectory(Q2, [0, 1], stops=[0]), ScaraError, ["stop 0 is an end point"]),
     (lambda: joint_trajectory(Q2 + [[2, 0, 0.5, 0]], [0, 1, 2], stops=[1.0]), ScaraError, ["a stop = 1.0",
                                                                                           "integer index"]),
     (lambda: joint_trajectory(Q2 + [[2, 0, 0.5, 0]], [0, 1, 2], stops=[1], velocities=np.zeros((3, 4))),
      ScaraError, ["with explicit velocities, give 0"]),
-    (lambda: joint_trajectory(Q2, [0, 1], velocities=np.zeros((2, 4)), v0=1.0), ScaraError, ["leave v0 at 0"]),
-    (lambda: joint_trajectory(Q2, [0.5, 1.5], v0=0.2), ScaraError, ["rests at the first point", "velocity"]),
-    (lambda: joint_trajectory(Q2, [0, 1], v1=0.2, total=2.0), ScaraError, ["rests at the last point"]),
+    (lambda: joint_trajectory(Q2, [0, 1], velocities=np.zeros((2, 4)), qd_start=1.0), ScaraError, ["leave qd_start at 0"]),
+    (lambda: joint_trajectory(Q2, [0.5, 1.5], qd_start=0.2), ScaraError, ["rests at the first point", "velocity"]),
+    (lambda: joint_trajectory(Q2, [0, 1], qd_end=0.2, total=2.0), ScaraError, ["rests at the last point"]),
     (lambda: joint_trajectory(Q2, [0, 2], total=1.0), ScaraError, ["total = 1 s is shorter than the motion"]),
     (lambda: joint_trajectory(Q2, [0, 1], dt=0.0), ScaraError, ["dt = 0.0 must be > 0"]),
     (lambda: joint_trajectory(Q2, [0, 1e4], dt=1e-3), ScaraError, ["MAX_SAMPLES"]),
@@ -391,9 +391,9 @@ Q2 = [[0, 0, 0.5, 0], [1, 0, 0.5, 0]]
     (lambda: joint_trajectory([[0, 0, 0.5, 0], [2e6, 0, 0.5, 0]], [0, 1]), ScaraError, ["MAX_ANGLE"]),
     (lambda: cubic([0, 0, 0.5], [1, 0, 0.5, 0], 1.0), ShapeError, ["q0 must have shape (4,)"]),
     (lambda: cubic(Q2[0], Q2[1], -1.0), ScaraError, ["duration = -1.0 must be > 0"]),
-    (lambda: cubic(Q2[0], Q2[1], 1.0, v0=[1, 2]), ShapeError, ["v0 must have shape (4,)"]),
-    (lambda: quintic(Q2[0], Q2[1], 1.0, a1=float("nan")), NonFiniteError, ["a1 = nan is not finite"]),
-    (lambda: quintic(Q2[0], Q2[1], 1.0, a1="big"), ScaraError, ["a1 must be a number, got 'big'"]),
+    (lambda: cubic(Q2[0], Q2[1], 1.0, qd_start=[1, 2]), ShapeError, ["qd_start must have shape (4,)"]),
+    (lambda: quintic(Q2[0], Q2[1], 1.0, qdd_end=float("nan")), NonFiniteError, ["qdd_end = nan is not finite"]),
+    (lambda: quintic(Q2[0], Q2[1], 1.0, qdd_end="big"), ScaraError, ["qdd_end must be a number, got 'big'"]),
 ])
 def test_bad_input_is_refused_with_a_clear_message(call, error, words):
     with pytest.raises(error) as info:
@@ -527,3 +527,25 @@ def test_a_joint_trajectory_is_a_joint_reference_for_simulate():
     assert err[-1] < 0.1 * err[jt.t <= jt.motion_end].max()
     with pytest.raises(ScaraError, match="sampled every 0.001 s but the run's dt = 0.002 s"):
         simulate(PDGravityController(), joint_reference=jt, dt=2e-3)
+
+
+def test_the_trajectory_owns_its_arrays():
+    """joint_trajectory neither freezes nor keeps the caller's arrays: the result's are its own copies."""
+    points = np.array([[0.0, 0.0, 0.5, 0.0], [1.0, -1.0, 0.5, 0.0], [2.0, -1.0, 0.5, 0.0]])
+    times = np.array([0.0, 1.0, 3.0])
+    vel = np.zeros((3, 4))
+    keep = points.copy()
+    jt = joint_trajectory(points, times, velocities=vel)
+    assert points.flags.writeable and times.flags.writeable and vel.flags.writeable
+    for mine, theirs in ((jt.points, points), (jt.times, times), (jt.velocities, vel)):
+        assert not np.shares_memory(mine, theirs)
+    points[1, 0] = 5.0
+    assert np.array_equal(jt.points, keep)
+
+
+def test_renamed_end_conditions_say_what_they_are():
+    """The end velocities and accelerations are qd_start, qd_end, qdd_start, qdd_end (a1 is a link length)."""
+    jt = quintic([0, 0, 0.5, 0], [1, 0, 0.5, 0], 1.0, qd_start=0.5, qdd_end=-1.0)
+    assert jt.velocities[0].tolist() == [0.5] * 4 and jt.accelerations[-1].tolist() == [-1.0] * 4
+    with pytest.raises(TypeError):
+        quintic([0, 0, 0.5, 0], [1, 0, 0.5, 0], 1.0, a1=1.0)

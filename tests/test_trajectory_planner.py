@@ -411,7 +411,7 @@ def test_wrong_types_of_planning_inputs_raise_scara_errors():
         plan_path(two, durations=[2.0], blends=["a"])
     with pytest.raises(ScaraError, match=r"arcs must be a dict .* got True"):
         plan_path(two, durations=[2.0], arcs=True)
-    with pytest.raises(ScaraError, match=r"phi = \{'a': 1\.0\} must be a number of radians"):
+    with pytest.raises(ScaraError, match=r"phi must be a number of radians, got \{'a': 1\.0\}"):
         plan_path(two, durations=[2.0], phi={"a": 1.0})
     with pytest.raises(ScaraError, match=r"phi at a waypoint must be a number of radians, got 'a'"):
         Waypoint([0.3, 0.2, 0.5], phi="a")
@@ -421,3 +421,10 @@ def test_plan_honours_the_stroke_of_the_params():
     short = ScaraParams(d3_min=0.0, d3_max=0.4)  # p_z = 0.5 needs d3 = 0.5 m
     with pytest.raises(UnreachableError, match=r"outside the stroke d3_min = 0 m <= d3 <= d3_max = 0\.4 m"):
         plan_path([[0.3, 0.2, 0.5], [0.5, 0.2, 0.5]], durations=[2.0], p=short)
+
+
+def test_an_arcs_key_must_be_a_segment_index_not_a_bool():
+    two = [[0.3, 0.2, 0.5], [0.5, 0.2, 0.5], [0.5, 0.4, 0.5]]
+    for key in (True, 0.0, 2, -1):
+        with pytest.raises(ScaraError, match=rf"arcs keys are segment indices 0\.\.1 .* got {key!r}"):
+            plan_path(two, durations=[2.0, 2.0], arcs={key: (0.45, 0.3, 0.5)})

@@ -45,12 +45,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compile import kernel
 from ..errors import (
     ScaraError, ShapeError, UnreachableError, as_array, check_angles, check_count, check_flag, check_index,
     check_number, check_positive,
 )
-from ..kinematics import ikine, jacobian_dot_kernel, jacobian_kernel, pose_kernel
+from ..kinematics import ikine, tool_motion_kernel
 from ..params import ScaraParams
 from .planner import MAX_SAMPLES, Trajectory, _samples
 from .timing import in_time_order, times as _times
@@ -74,26 +73,28 @@ _STROKE_TOL = 1e-12
 # --------------------------------------------------------------------------------------------------
 # one segment: the coefficients
 # --------------------------------------------------------------------------------------------------
-def _cubic_coefficients(q0, q1, T, v0, v1) -> np.ndarray:
-    """The coefficients ``[b0, b1, b2, b3]`` (ascending powers of tau) of eq-traj-cubic for every joint, ``T`` the
-    duration ``t_f``: arrays (..., 4) in, (..., 4, 4) out (the last axis holds the powers)."""
-    D = q1 - q0
-    a2 = (3.0 * D - (2.0 * v0 + v1) * T) / T**2
-    a3 = (-2.0 * D + (v0 + v1) * T) / T**3
-    return np.stack([q0, v0, a2, a3], axis=-1)
+def _cubic_coefficients(q_i, q_f, T, v_i, v_f) -> np.ndarray:
+    """The coefficients ``[b0, b1, b2, b3]`` (ascending powers of tau) of eq-traj-cubic for every joint, from the
+    end positions ``q_i``, ``q_f`` and velocities ``v_i``, ``v_f``, ``T`` the duration ``t_f``: arrays (..., 4) in,
+    (..., 4, 4) out (the last axis holds the powers)."""
+    D = q_f - q_i
+    b2 = (3.0 * D - (2.0 * v_i + v_f) * T) / T**2
+    b3 = (-2.0 * D + (v_i + v_f) * T) / T**3
+    return np.stack([q_i, v_i, b2, b3], axis=-1)
 
 
-def _quintic_coefficients(q0, q1, T, v0, v1, a0, a1) -> np.ndarray:
-    """The coefficients ``[b0 ... b5]`` of eq-traj-quintic for every joint, ``T`` the duration ``t_f``, in the
-    book's form with the misses ``delta_0 = Delta - v_i T - alpha_i T^2 / 2``, ``delta_1 = (v_f - v_i - alpha_i T) T``,
+def _quintic_coefficients(q_i, q_f, T, v_i, v_f, alpha_i, alpha_f) -> np.ndarray:
+    """The coefficients ``[b0 ... b5]`` of eq-traj-quintic for every joint, ``T`` the duration ``t_f``, from the end
+    positions, velocities and accelerations (``alpha_i``, ``alpha_f``), in the book's form with the misses
+    ``delta_0 = Delta - v_i T - alpha_i T^2 / 2``, ``delta_1 = (v_f - v_i - alpha_i T) T``,
     ``delta_2 = (alpha_f - alpha_i) T^2``: arrays (..., 4) in, (..., 4, 6) out."""
-    d0 = (q1 - q0) - v0 * T - 0.5 * a0 * T**2
-    d1 = (v1 - v0 - a0 * T) * T
-    d2 = (a1 - a0) * T**2
-    c3 = (20.0 * d0 - 8.0 * d1 + d2) / (2.0 * T**3)
-    c4 = (-30.0 * d0 + 14.0 * d1 - 2.0 * d2) / (2.0 * T**4)
-    c5 = (12.0 * d0 - 6.0 * d1 + d2) / (2.0 * T**5)
-    return np.stack([q0, v0, 0.5 * a0, c3, c4, c5], axis=-1)
+    delta0 = (q_f - q_i) - v_i * T - 0.5 * alpha_i * T**2
+    delta1 = (v_f - v_i - alpha_i * T) * T
+    delta2 = (alpha_f - alpha_i) * T**2
+    c3 = (20.0 * delta0 - 8.0 * delta1 + delta2) / (2.0 * T**3)
+    c4 = (-30.0 * delta0 + 14.0 * delta1 - 2.0 * delta2) / (2.0 * T**4)
+    c5 = (12.0 * delta0 - 6.0 * delta1 + delta2) / (2.0 * T**5)
+    return np.stack([q_i, v_i, 0.5 * alpha_i, c3, c4, c5], axis=-1)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -260,8 +261,8 @@ class JointTrajectory:
         key = ("tool", pp)
         if key not in self._cache:
             out = np.empty((self.t.size, 12))
-            _tool_kernel(np.ascontiguousarray(self.q), np.ascontiguousarray(self.qd), np.ascontiguousarray(self.qdd),
-                         pp.a1, pp.a2, pp.d0, out)
+            tool_motion_kernel(np.ascontiguousarray(self.q), np.ascontiguousarray(self.qd),
+                               np.ascontiguousarray(self.qdd), pp.a1, pp.a2, pp.d0, out)
             res = (out[:, 0:4], out[:, 4:8], out[:, 8:12])
             for a in res:
                 a.flags.writeable = False
@@ -288,25 +289,6 @@ class JointTrajectory:
                 f"{self.rule}, {self.total:g} s at dt = {self.dt:g} s, {self.t.size} samples)")
 
 
-@kernel
-def _tool_kernel(q, qd, qdd, a1, a2, d0, out):
-    """``[x, xd, xdd]`` (N, 12) of the joint motion: ``x = k(q)``, ``xd = J_A qd``, ``xdd = J_A qdd + Jdot_A qd``."""
-    J = np.empty((4, 4))
-    Jd = np.empty((4, 4))
-    for k in range(q.shape[0]):
-        pose_kernel(q[k], a1, a2, d0, out[k, 0:4])
-        jacobian_kernel(q[k], a1, a2, J)
-        jacobian_dot_kernel(q[k], qd[k], a1, a2, Jd)
-        for i in range(4):
-            v = 0.0
-            a = 0.0
-            for j in range(4):
-                v += J[i, j] * qd[k, j]
-                a += J[i, j] * qdd[k, j] + Jd[i, j] * qd[k, j]
-            out[k, 4 + i] = v
-            out[k, 8 + i] = a
-
-
 # --------------------------------------------------------------------------------------------------
 # the builders
 # --------------------------------------------------------------------------------------------------
@@ -326,7 +308,7 @@ def _kind(kind) -> str:
 def _points_and_times(points, times, dt):
     """The points (n, 4) and their times (n,), checked: shapes, finite values, at least two points, times that
     increase from a start >= 0, each a whole number of samples."""
-    q = as_array(points, "points", (4,), allow_batch=True)
+    q = np.array(as_array(points, "points", (4,), allow_batch=True), dtype=float)  # the trajectory's own copy
     if q.ndim != 2:
         raise ShapeError(f"points must have shape (n, 4), one joint configuration per row, got {q.shape}")
     n = len(q)
@@ -357,7 +339,8 @@ def _inner_flags(stops, n):
     for s in stops:
         i = check_index(s, "a stop", n)
         if i in (0, n - 1):
-            raise ScaraError(f"stop {i} is an end point: the ends take the velocities v0 and v1 (zero by default); "
+            raise ScaraError(f"stop {i} is an end point: the ends take the velocities qd_start and qd_end (zero by "
+                             f"default); "
                              f"stops lists inner points, 1 to {n - 2}")
         mask[i] = True
     return mask
@@ -371,8 +354,8 @@ def _values_at_points(values, name, n):
 
 
 def joint_trajectory(points, times, kind: str = "cubic", *, velocities="mean", accelerations="difference",
-                     stops=(), v0=0.0, v1=0.0, a0=0.0, a1=0.0, total=None, dt: float = 1e-3, labels=None, p=None,
-                     check: bool = True) -> JointTrajectory:
+                     stops=(), qd_start=0.0, qd_end=0.0, qdd_start=0.0, qdd_end=0.0, total=None, dt: float = 1e-3,
+                     labels=None, p=None, check: bool = True) -> JointTrajectory:
     """A joint-space trajectory through the configurations ``points`` at ``times``: one cubic (eq-traj-cubic) or
     quintic (eq-traj-quintic) per segment and joint, with continuous velocity (both) and acceleration (quintic)
     at the via points (module docstring; Siciliano et al. 2009, section 4.2.2).
@@ -394,7 +377,7 @@ def joint_trajectory(points, times, kind: str = "cubic", *, velocities="mean", a
     stops : sequence of int
         Inner points where the arm stops: velocity zero there (and acceleration, for the quintic). Only with a
         rule, not with explicit values.
-    v0, v1, a0, a1 : number or array (4,)
+    qd_start, qd_end, qdd_start, qdd_end : number or array (4,)
         Velocity and (quintic) acceleration at the first and last point, with a rule (default 0: from rest, to
         rest). They must be 0 where the arm rests: before ``times[0] > 0`` or after ``times[-1] < total``.
     total : float, optional
@@ -434,48 +417,12 @@ def joint_trajectory(points, times, kind: str = "cubic", *, velocities="mean", a
     check = check_flag(check, "check")
     q, t, ks = _points_and_times(points, times, dt)
     n = len(q)
-    if labels is None:
-        labels = [f"p{i}" for i in range(n)]
-    else:
-        if isinstance(labels, (str, bytes)) or np.ndim(labels) != 1 or len(labels) != n:
-            raise ShapeError(f"labels must be {n} names, one per point, got {labels!r}")
-        labels = [str(s) for s in labels]
+    labels = _point_labels(labels, n)
     stop = _inner_flags(stops, n)
-    ends = dict(v0=_per_joint(v0, "v0"), v1=_per_joint(v1, "v1"), a0=_per_joint(a0, "a0"), a1=_per_joint(a1, "a1"))
-    takes_accelerations = (np.any(ends["a0"] != 0) or np.any(ends["a1"] != 0)
-                           or not _is_rule(accelerations, "difference"))
-    if kind == "cubic" and takes_accelerations:
-        raise ScaraError("a cubic cannot take accelerations (a0, a1, accelerations): it meets four conditions per "
-                         "segment, the positions and velocities at both ends; use kind='quintic'")
-
-    if _is_rule(velocities, *VELOCITY_RULES):
-        rule = velocities
-        fn = _mean_velocities if rule == "mean" else _spline_velocities
-        v = fn(q, t, ends["v0"], ends["v1"], stop)
-    elif isinstance(velocities, str):
-        raise ScaraError(f"velocities = {velocities!r} must be one of {list(VELOCITY_RULES)} or an array (n, 4)")
-    else:
-        rule = "given"
-        _no_rule_options(stop, ends, ("v0", "v1"), "velocities")
-        v = _values_at_points(velocities, "velocities", n)
-    acc = None
-    if kind == "quintic":
-        if _is_rule(accelerations, *ACCELERATION_RULES):
-            acc = _difference_accelerations(v, t, ends["a0"], ends["a1"], stop)
-        elif isinstance(accelerations, str):
-            raise ScaraError(f"accelerations = {accelerations!r} must be one of {list(ACCELERATION_RULES)} or an "
-                             f"array (n, 4)")
-        else:
-            _no_rule_options(stop, ends, ("a0", "a1"), "accelerations")
-            acc = _values_at_points(accelerations, "accelerations", n)
-            rule = f"{rule}, accelerations given"
-
-    k_total = ks[-1] if total is None else _samples(check_positive(total, "total"), dt, "total")
-    if k_total < ks[-1]:
-        raise ScaraError(f"total = {total:g} s is shorter than the motion, which ends at times[-1] = {t[-1]:g} s")
-    if k_total + 1 > MAX_SAMPLES:
-        raise ScaraError(f"the series lasts {k_total * dt:g} s, {k_total + 1} samples at dt = {dt:g} s, more than a "
-                         f"trajectory may hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter motion")
+    ends = {name: _per_joint(value, name) for name, value in (("qd_start", qd_start), ("qd_end", qd_end),
+                                                               ("qdd_start", qdd_start), ("qdd_end", qdd_end))}
+    v, acc, rule = _values_at_the_points(kind, velocities, accelerations, q, t, ends, stop)
+    k_total = _total_samples(total, ks, t, dt)
     _check_rests(t, k_total * dt, v, acc)
 
     T = np.diff(t)[:, None]
@@ -493,6 +440,60 @@ def joint_trajectory(points, times, kind: str = "cubic", *, velocities="mean", a
     if check:
         _check_stroke(jt, pp)
     return jt
+
+
+def _point_labels(labels, n) -> list:
+    """The names of the ``n`` points: ``p0``, ``p1``... by default, else ``labels`` (n names)."""
+    if labels is None:
+        return [f"p{i}" for i in range(n)]
+    if isinstance(labels, (str, bytes)) or np.ndim(labels) != 1 or len(labels) != n:
+        raise ShapeError(f"labels must be {n} names, one per point, got {labels!r}")
+    return [str(s) for s in labels]
+
+
+def _values_at_the_points(kind, velocities, accelerations, q, t, ends, stop):
+    """``(v, acc, rule)``: the velocities (n, 4) and (quintic) accelerations (n, 4, else None) at the points, by
+    their rules (eq-traj-via-rule) or as given, and the name of the rule."""
+    n = len(q)
+    takes_accelerations = (np.any(ends["qdd_start"] != 0) or np.any(ends["qdd_end"] != 0)
+                           or not _is_rule(accelerations, "difference"))
+    if kind == "cubic" and takes_accelerations:
+        raise ScaraError("a cubic cannot take accelerations (qdd_start, qdd_end, accelerations): it meets four "
+                         "conditions per segment, the positions and velocities at both ends; use kind='quintic'")
+    if _is_rule(velocities, *VELOCITY_RULES):
+        rule = velocities
+        fn = _mean_velocities if rule == "mean" else _spline_velocities
+        v = fn(q, t, ends["qd_start"], ends["qd_end"], stop)
+    elif isinstance(velocities, str):
+        raise ScaraError(f"velocities = {velocities!r} must be one of {list(VELOCITY_RULES)} or an array (n, 4)")
+    else:
+        rule = "given"
+        _no_rule_options(stop, ends, ("qd_start", "qd_end"), "velocities")
+        v = _values_at_points(velocities, "velocities", n)
+    acc = None
+    if kind == "quintic":
+        if _is_rule(accelerations, *ACCELERATION_RULES):
+            acc = _difference_accelerations(v, t, ends["qdd_start"], ends["qdd_end"], stop)
+        elif isinstance(accelerations, str):
+            raise ScaraError(f"accelerations = {accelerations!r} must be one of {list(ACCELERATION_RULES)} or an "
+                             f"array (n, 4)")
+        else:
+            _no_rule_options(stop, ends, ("qdd_start", "qdd_end"), "accelerations")
+            acc = _values_at_points(accelerations, "accelerations", n)
+            rule = f"{rule}, accelerations given"
+    return v, acc, rule
+
+
+def _total_samples(total, ks, t, dt) -> int:
+    """The sample index of the series' end: ``total`` (s, at least the motion's end ``times[-1]``), default the
+    motion's end; at most ``MAX_SAMPLES`` samples."""
+    k_total = ks[-1] if total is None else _samples(check_positive(total, "total"), dt, "total")
+    if k_total < ks[-1]:
+        raise ScaraError(f"total = {total:g} s is shorter than the motion, which ends at times[-1] = {t[-1]:g} s")
+    if k_total + 1 > MAX_SAMPLES:
+        raise ScaraError(f"the series lasts {k_total * dt:g} s, {k_total + 1} samples at dt = {dt:g} s, more than a "
+                         f"trajectory may hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter motion")
+    return k_total
 
 
 def _is_rule(value, *names) -> bool:
@@ -544,10 +545,11 @@ def _check_stroke(jt, p):
                     f"(the polynomial overshoots): move the points, slow the segment or stop at its ends")
 
 
-def cubic(q0, q1, duration, v0=0.0, v1=0.0, *, dt: float = 1e-3, p=None, check: bool = True) -> JointTrajectory:
+def cubic(q0, q1, duration, qd_start=0.0, qd_end=0.0, *, dt: float = 1e-3, p=None,
+          check: bool = True) -> JointTrajectory:
     """One cubic segment per joint (eq-traj-cubic) from the configuration ``q0`` to ``q1`` (4,) in ``duration``
-    seconds (a whole number of samples ``dt``), leaving with the velocity ``v0`` and arriving with ``v1`` (a
-    number for every joint or a vector (4,); default 0, from rest to rest).
+    seconds (a whole number of samples ``dt``), leaving with the joint velocity ``qd_start`` and arriving with
+    ``qd_end`` (a number for every joint or a vector (4,); default 0, from rest to rest).
 
     The coefficients are ``jt.coefficients[0]`` (4 joints x 4 powers of tau). See :func:`joint_trajectory` for
     the errors.
@@ -560,14 +562,15 @@ def cubic(q0, q1, duration, v0=0.0, v1=0.0, *, dt: float = 1e-3, p=None, check: 
     """
     T = check_positive(duration, "duration")
     return joint_trajectory([as_array(q0, "q0", (4,)), as_array(q1, "q1", (4,))], [0.0, T], "cubic",
-                            velocities=[_per_joint(v0, "v0"), _per_joint(v1, "v1")], dt=dt, p=p, check=check)
+                            velocities=[_per_joint(qd_start, "qd_start"), _per_joint(qd_end, "qd_end")], dt=dt, p=p,
+                            check=check)
 
 
-def quintic(q0, q1, duration, v0=0.0, v1=0.0, a0=0.0, a1=0.0, *, dt: float = 1e-3, p=None,
-            check: bool = True) -> JointTrajectory:
+def quintic(q0, q1, duration, qd_start=0.0, qd_end=0.0, qdd_start=0.0, qdd_end=0.0, *, dt: float = 1e-3,
+            p=None, check: bool = True) -> JointTrajectory:
     """One quintic segment per joint (eq-traj-quintic) from ``q0`` to ``q1`` (4,) in ``duration`` seconds (a whole
-    number of samples ``dt``), with velocities ``v0``, ``v1`` and accelerations ``a0``, ``a1`` at the two ends (a
-    number for every joint or a vector (4,); default 0).
+    number of samples ``dt``), with the joint velocities ``qd_start``, ``qd_end`` and accelerations ``qdd_start``,
+    ``qdd_end`` at the two ends (a number for every joint or a vector (4,); default 0).
 
     The coefficients are ``jt.coefficients[0]`` (4 joints x 6 powers of tau). See :func:`joint_trajectory` for
     the errors.
@@ -578,8 +581,9 @@ def quintic(q0, q1, duration, v0=0.0, v1=0.0, a0=0.0, a1=0.0, *, dt: float = 1e-
     """
     T = check_positive(duration, "duration")
     return joint_trajectory([as_array(q0, "q0", (4,)), as_array(q1, "q1", (4,))], [0.0, T], "quintic",
-                            velocities=[_per_joint(v0, "v0"), _per_joint(v1, "v1")],
-                            accelerations=[_per_joint(a0, "a0"), _per_joint(a1, "a1")], dt=dt, p=p, check=check)
+                            velocities=[_per_joint(qd_start, "qd_start"), _per_joint(qd_end, "qd_end")],
+                            accelerations=[_per_joint(qdd_start, "qdd_start"), _per_joint(qdd_end, "qdd_end")], dt=dt,
+                            p=p, check=check)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -709,7 +713,7 @@ def compare_joint_space(traj: Trajectory, kinds=("cubic", "quintic"), extra: int
     itself). The operational row's joint motion is the exact one of the closed-form inverse kinematics,
     ``qd = J_A^-1 xd`` and ``qdd = J_A^-1 (xdd - Jdot_A qd)``."""
     from ..dynamics import inverse_dynamics  # noqa: PLC0415 - chapter 5's model, loaded when asked for
-    from .._simulate.reference import ikine_reference  # noqa: PLC0415
+    from .._simulate.setpoints import ikine_reference  # noqa: PLC0415
 
     _check_plan(traj)
     if isinstance(kinds, str) or not all(isinstance(k, str) for k in kinds):

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_number, check_positive
+from ..errors import (ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_index, check_number,
+                      check_positive)
 from ..kinematics import check_reachable, ikine, is_reachable
 from ..params import ScaraParams
 from .._manipulability import manipulability
@@ -451,9 +452,11 @@ def _segments(pos, arcs, labels, seg_labels):
         raise ScaraError(f"arcs must be a dict {{segment index: point (3,) or Arc}}, got {arcs!r}")
     arcs = dict(arcs or {})
     for key in arcs:
-        if not (isinstance(key, (int, np.integer)) and 0 <= key < m):
+        try:
+            check_index(key, "an arcs key", m)
+        except ScaraError as exc:
             raise ScaraError(f"arcs keys are segment indices 0..{m - 1} (segment j joins waypoints j and j+1), "
-                             f"got {key!r}")
+                             f"got {key!r}") from exc
     segments = []
     for j in range(m):
         a, b = pos[j], pos[j + 1]
@@ -493,14 +496,11 @@ def _orientations(wps, pos, phi, p, elbow):
     """The orientation at every waypoint: its own ``phi`` if it has one, else the one before it; the first is
     the waypoint's, or ``phi``, or the start configuration's."""
     if phi is not None:
-        if not isinstance(phi, (int, float, np.integer, np.floating)) or isinstance(phi, (bool, np.bool_)):
-            raise ScaraError(f"phi = {phi!r} must be a number of radians")
-        if not np.isfinite(float(phi)):
-            raise ScaraError(f"phi = {float(phi)} must be finite")
+        phi = check_number(phi, "phi", "a number of radians")
     if wps[0].phi is not None:
         phi0 = wps[0].phi
     else:
-        phi0 = start_orientation(pos[0], p, elbow) if phi is None else float(phi)
+        phi0 = start_orientation(pos[0], p, elbow) if phi is None else phi
     phis = [phi0]
     for w in wps[1:]:
         phis.append(w.phi if w.phi is not None else phis[-1])

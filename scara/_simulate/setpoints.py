@@ -1,5 +1,9 @@
 """The references a controller receives (chapter 5): the joint reference ``[q_d, qd_d, qdd_d]`` (from
-``clik2``, the closed-form inverse kinematics or a given array) and the operational one ``[x_d, xd_d, xdd_d]``."""
+``clik2``, the closed-form inverse kinematics or a given array) and the operational one ``[x_d, xd_d, xdd_d]``.
+
+A trajectory carries the arm it was planned for (``traj.params``) and its elbow (``traj.elbow``): its joint
+reference is computed for that arm and that elbow, and a plant whose lengths ``a1, a2, d0`` differ from the
+trajectory's is refused (the path would be another one on that arm)."""
 from __future__ import annotations
 
 import warnings
@@ -8,20 +12,53 @@ import numpy as np
 
 from .._compile import kernel
 from ..errors import ScaraError, ShapeError, UnreachableError, as_array
-from ..kinematics import ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose, pose_kernel
+from ..kinematics import (_elbow_sign, check_regular, ikine, jacobian, jacobian_dot_kernel, jacobian_kernel, pose,
+                          tool_motion_kernel)
 from ..params import ScaraParams
 from .interface import MAX_SAMPLES, _sample_count
 
 __all__ = ["ikine_reference", "joint_setpoint"]
 
-def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.ndarray:
+#: the lengths a trajectory and the arm that follows it must share (m)
+_GEOMETRY = ("a1", "a2", "d0")
+
+
+def _arm_of(traj, p=None) -> ScaraParams:
+    """The arm a trajectory's joint reference is computed for: ``p`` (default the trajectory's own arm
+    ``traj.params``, else the course's robot). A ``p`` whose lengths ``a1, a2, d0`` differ from those ``traj``
+    was planned for raises :class:`~scara.ScaraError` naming both."""
+    planned = getattr(traj, "params", None)
+    if not isinstance(planned, ScaraParams):
+        return ScaraParams.resolve(p)
+    if p is None:
+        return planned
+    p = ScaraParams.resolve(p)
+    if any(getattr(p, k) != getattr(planned, k) for k in _GEOMETRY):
+        lengths = lambda q: ", ".join(f"{k} = {getattr(q, k):g}" for k in _GEOMETRY)  # noqa: E731
+        raise ScaraError(f"the trajectory was planned for an arm with {lengths(planned)} m, but the arm given has "
+                         f"{lengths(p)} m: its joint reference would follow another path; plan the trajectory for "
+                         f"this arm (plan_path(..., p=...)) or give the arm it was planned for")
+    return p
+
+
+def _elbow_of(traj, elbow=None) -> int:
+    """``elbow`` (+1 or -1), by default the trajectory's own ``traj.elbow`` (else -1, the course's elbow)."""
+    if elbow is None:
+        elbow = getattr(traj, "elbow", None)
+    return -1 if elbow is None else _elbow_sign(elbow)
+
+
+def ikine_reference(traj, p: ScaraParams | None = None, elbow: int | None = None) -> np.ndarray:
     """Joint reference ``[q, qd, qdd]`` (N, 12) from the closed-form inverse kinematics of a trajectory.
 
     ``q = ikine(x_d)`` (angles unwrapped), ``qd = J_A^-1 xd_d``, ``qdd = J_A^-1 (xdd_d - Jdot_A qd)``: the exact
-    joint motion that realises ``x_d`` (no CLIK error). Raises :class:`~scara.UnreachableError` for an
-    unreachable sample and :class:`~scara.ScaraError` at a singular configuration.
+    joint motion that realises ``x_d`` (no CLIK error), for the arm ``p`` (default the trajectory's own,
+    ``traj.params``; another arm's lengths are refused) and the elbow ``elbow`` (default the trajectory's,
+    ``traj.elbow``, else -1). Raises :class:`~scara.UnreachableError` for an unreachable sample and
+    :class:`~scara.UnstableError` at a singular configuration (:func:`~scara.kinematics.check_regular`).
     """
-    p = ScaraParams.resolve(p)
+    p = _arm_of(traj, p)
+    elbow = _elbow_of(traj, elbow)
     x, xd, xdd = (as_array(_traj_field(traj, f), f"traj.{f}", (4,), allow_batch=True) for f in ("x", "xd", "xdd"))
     if not (x.ndim == 2 and x.shape == xd.shape == xdd.shape):
         raise ShapeError(f"traj.x, traj.xd, traj.xdd must all have shape (N, 4), got {x.shape}, {xd.shape}, "
@@ -30,12 +67,9 @@ def ikine_reference(traj, p: ScaraParams | None = None, elbow: int = -1) -> np.n
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 3] = x[:, 3] - q[:, 0] - q[:, 1]
     # every sample at once: the same kernels and the same LAPACK calls as sample by sample
+    check_regular(q, p, what="the reference")
     J = np.empty((len(q), 4, 4))
     _jacobian_rows(q, p.a1, p.a2, J)
-    singular = np.abs(np.linalg.det(J)) < 1e-9
-    if singular.any():
-        k = int(np.argmax(singular))
-        raise ScaraError(f"sample {k}: q = {q[k].round(4).tolist()} is singular (sin theta2 = 0)")
     qd = np.linalg.solve(J, xd[:, :, None])[:, :, 0]
     Jd = np.empty_like(J)
     _jacobian_dot_rows(q, qd, p.a1, p.a2, Jd)
@@ -99,39 +133,26 @@ def _joint_reference_array(joint_reference):
 
 
 def _clik2_reference(traj, p):
+    """The joint reference ``clik2`` gives along ``traj`` for the arm it was planned for (``traj.params``, else
+    the plant ``p``; a plant of other lengths is refused, see :func:`_arm_of`), or, without chapter 4,
+    :func:`ikine_reference`."""
+    p = _arm_of(traj, p)
+    planned = getattr(traj, "params", None)
+    arm = planned if isinstance(planned, ScaraParams) else p   # clik2 holds a trajectory to the arm of its plan
     try:
         from .._clik import clik2  # noqa: PLC0415 - optional until chapter 4 exists
     except ImportError:
         warnings.warn("scara._clik.clik2 is not available: joint references come from the closed-form inverse "
                       "kinematics of the trajectory instead", RuntimeWarning, stacklevel=3)
         return ikine_reference(traj, p)
-    return _joint_reference_array(clik2(traj))
-
-
-@kernel
-def _operational_kernel(ref, a1, a2, d0, out):
-    """``[x, xd, xdd]`` (N, 12) of a joint reference ``[q, qd, qdd]``: ``x = k(q)``, ``xd = J_A qd``,
-    ``xdd = J_A qdd + Jdot_A qd``."""
-    J = np.empty((4, 4))
-    Jd = np.empty((4, 4))
-    for k in range(ref.shape[0]):
-        q = ref[k, 0:4]
-        pose_kernel(q, a1, a2, d0, out[k, 0:4])
-        jacobian_kernel(q, a1, a2, J)
-        jacobian_dot_kernel(q, ref[k, 4:8], a1, a2, Jd)
-        for i in range(4):
-            v = 0.0
-            a = 0.0
-            for j in range(4):
-                v += J[i, j] * ref[k, 4 + j]
-                a += J[i, j] * ref[k, 8 + j] + Jd[i, j] * ref[k, 4 + j]
-            out[k, 4 + i] = v
-            out[k, 8 + i] = a
+    return _joint_reference_array(clik2(traj, p=arm))
 
 
 def _operational_from_joint(ref, p):
+    """``[x, xd, xdd]`` (N, 12) of a joint reference ``[q, qd, qdd]`` (:func:`~scara.kinematics.tool_motion_kernel`)."""
+    ref = np.ascontiguousarray(ref)
     out = np.empty((len(ref), 12))
-    _operational_kernel(np.ascontiguousarray(ref), p.a1, p.a2, p.d0, out)
+    tool_motion_kernel(ref[:, 0:4], ref[:, 4:8], ref[:, 8:12], p.a1, p.a2, p.d0, out)
     return out
 
 
@@ -170,11 +191,16 @@ def _references(kind, traj, joint_reference, duration, dt, p):
     None), ``x_d`` (n, 4) the desired pose (or None for an open-loop run), ``xop`` the operational reference
     (or None) and ``n`` the number of samples."""
     jref = None
+    if duration is not None and (traj is not None or joint_reference is not None):
+        given = "traj" if traj is not None else "joint_reference"
+        raise ScaraError(f"duration = {duration!r} applies to an open-loop run without reference only, but {given} is "
+                         f"given: the run lasts as long as its reference; leave duration out")
     if traj is not None:
+        _arm_of(traj, p)
         _check_time_base(traj, "traj", dt)
     if joint_reference is not None:
         _check_time_base(joint_reference, "joint_reference", dt)
-        jref = np.ascontiguousarray(_joint_reference_array(joint_reference))
+        jref = np.array(_joint_reference_array(joint_reference), dtype=float, order="C")  # the run's own copy
     elif kind == "joint":
         if traj is None:
             raise ScaraError("a joint-space controller needs traj or joint_reference")
@@ -182,7 +208,7 @@ def _references(kind, traj, joint_reference, duration, dt, p):
     x_d = None
     xop = None
     if traj is not None:
-        x_d = as_array(_traj_field(traj, "x"), "traj.x", (4,), allow_batch=True)
+        x_d = np.array(as_array(_traj_field(traj, "x"), "traj.x", (4,), allow_batch=True))  # the run's own copy
         if x_d.ndim != 2:
             raise ShapeError(f"traj.x must have shape (N, 4), got {x_d.shape}")
         n = len(x_d)
@@ -216,9 +242,11 @@ def _references(kind, traj, joint_reference, duration, dt, p):
     return ref, jref, x_d, xop, n
 
 
-def _start_state(q0, qd0, jref, xop, traj, p, elbow):
+def _start_state(q0, qd0, jref, xop, traj, p, elbow=None):
     """The initial ``(q0, qd0)`` of a run: the given ones, or the reference's first sample (joint reference),
-    ``traj.q0``, or the inverse kinematics of the operational reference's first sample with ``elbow``."""
+    ``traj.q0``, or the inverse kinematics of the operational reference's first sample with ``elbow`` (default the
+    trajectory's ``traj.elbow``, else -1)."""
+    elbow = _elbow_of(traj, elbow)
     if q0 is None:
         if jref is not None:
             q0 = jref[0, :4]
@@ -245,10 +273,7 @@ def _start_state(q0, qd0, jref, xop, traj, p, elbow):
 
 def _start_velocity(q0, xd0, p):
     """``qd0 = J_A(q0)^-1 xd0``: the joint speeds that give the reference's first operational velocity; refused
-    at (or numerically at) a singular configuration, where no such speeds exist."""
-    J = jacobian(q0, p)
-    if np.linalg.cond(J) > 1e12:
-        raise ScaraError(f"q0 = {np.round(q0, 6).tolist()} is a singular configuration (theta2 = "
-                         f"{q0[1]:.6g} rad; det J_A = a1 a2 sin theta2 vanishes): the start speeds cannot be found "
-                         "from the reference's velocity; give qd0, or start away from theta2 = 0 and pi")
-    return np.linalg.solve(J, xd0)
+    at (or numerically at) a singular configuration, where no such speeds exist (the one rule,
+    :func:`~scara.kinematics.check_regular`, raises :class:`~scara.UnstableError`)."""
+    check_regular(q0, p, what="the start configuration q0")
+    return np.linalg.solve(jacobian(q0, p), xd0)
