@@ -34,10 +34,10 @@ def runs():
         return lambda: c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
 
     return {
-        "clik inverse": (lambda: clik(traj, "inverse"), "run_time"),
-        "clik transpose": (lambda: clik(traj, "transpose"), "run_time"),
-        "clik pseudoinverse": (lambda: clik(traj, "pseudoinverse"), "run_time"),
-        "clik2 (second order)": (lambda: clik2(traj), "run_time"),
+        "clik inverse": (lambda: clik(traj, "inverse"), "elapsed"),
+        "clik transpose": (lambda: clik(traj, "transpose"), "elapsed"),
+        "clik pseudoinverse": (lambda: clik(traj, "pseudoinverse"), "elapsed"),
+        "clik2 (second order)": (lambda: clik2(traj), "elapsed"),
         "robust, 70 s": (controller(RobustController()), "elapsed"),
         "adaptive, 70 s": (controller(AdaptiveController()), "elapsed"),
         "operational + integral, 70 s": (controller(OperationalSpaceController(integral=True)), "elapsed"),

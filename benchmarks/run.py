@@ -411,7 +411,7 @@ def bench_clik(traj, repeats: int, budget: float) -> dict:
     xr = np.ascontiguousarray(traj.x)
     vr = np.ascontiguousarray(traj.xd)
     q0 = res.q[0].copy()
-    loop_alone = [ours().run_time for _ in range(repeats)]
+    loop_alone = [ours().elapsed for _ in range(repeats)]
     all_ours, libs = _whole_runs(
         ours, (NumpyCalls(p), PinocchioCalls(p), ToolboxCalls(p)),
         lambda lib, s: clik_loop(lib, xr, vr, q0, traj.dt, SEED_K, s), n, res.q, repeats, budget, 200)

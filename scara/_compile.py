@@ -12,6 +12,11 @@ Nothing is compiled at import: a :func:`kernel` compiles (or loads from the on-d
 and a kernel that needs an explicit signature (a first-class function argument) is made with
 :func:`signature_kernel`, which compiles that signature on its first call too. :func:`ensure_signature`
 compiles a lazy kernel for one given signature before it is passed as a first-class function.
+
+The closed loop's contract with a controller's law is declared here once, beside :func:`kernel`: the flat
+arrays' fields (:class:`ArrayLayout`), the numba types of the compiled loops (:data:`VECTOR`, :data:`MATRIX`,
+:data:`LAW_DATA_TYPE`...), the law's signature :data:`LAW_SIGNATURE` and its decorator :func:`control_law`
+(re-exported as ``scara.control_law``); the contract itself is written in :class:`scara._simulate.Controller`.
 """
 from __future__ import annotations
 
@@ -150,38 +155,81 @@ def ensure_signature(fn, signature):
 class ArrayLayout:
     """Named fields of a flat float array, declared once: what a compiled kernel reads by offset.
 
-    A compiled law receives its gains (and its model) as one flat float array (see
-    :data:`scara._simulate.LAW_SIGNATURE`); declaring the fields here, with their sizes, gives both the offsets
-    the kernel reads (module-level ints, constants to numba) and the one packer that writes the array, so the
-    two cannot drift::
+    A compiled law receives its gains, model, state, scratch rows and signals as flat arrays (see
+    :data:`LAW_SIGNATURE` and :class:`scara._simulate.Controller`); declaring the fields here, with their sizes,
+    gives both the offsets the kernel reads (module-level ints, constants to numba) and the one packer that
+    writes the array, so the two cannot drift::
 
         GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("rho", 1))
         _KP, _KD, _RHO = GAINS.offsets                      # 0, 4, 8
         GAINS.pack(K_P=kp, K_D=kd, rho=20.0)                # array of GAINS.size = 9 floats
 
+    A field's size may be given as a tuple of labels instead of a number: ``("w", ("x", "y"))`` holds two
+    entries named ``w_x`` and ``w_y`` in :attr:`entry_names` (a numeric size ``n > 1`` names them ``w_1`` ...
+    ``w_n``). With ``width`` each entry is a row of ``width`` floats (the scratch rows of a law:
+    ``ArrayLayout(("J", 4), ("y", 1), width=4)`` is a (5, 4) array, ``J`` rows 0-3).
+
     >>> ArrayLayout(("K_P", 4), ("rho", 1)).offsets
     Offsets(K_P=0, rho=4)
+    >>> ArrayLayout(("z_norm", 1), ("w", 2)).entry_names
+    ('z_norm', 'w_1', 'w_2')
     """
 
-    def __init__(self, *fields):
+    def __init__(self, *fields, width: int | None = None):
         from collections import namedtuple  # noqa: PLC0415
 
         names = [str(name) for name, _ in fields]
         if len(set(names)) != len(names):
             raise ValueError(f"repeated field names in {names}")
-        self.sizes = {name: int(size) for name, size in fields}
+        self.labels = {}
+        for name, size in fields:
+            if isinstance(size, (tuple, list)):
+                self.labels[str(name)] = tuple(f"{name}_{lab}" for lab in size)
+            elif int(size) == 1:
+                self.labels[str(name)] = (str(name),)
+            else:
+                self.labels[str(name)] = tuple(f"{name}_{i + 1}" for i in range(int(size)))
+        self.sizes = {name: len(self.labels[name]) for name in names}
         starts, at = [], 0
         for name in names:
             starts.append(at)
             at += self.sizes[name]
         #: the offset of each field, in the declared order (unpack them into module-level ints)
         self.offsets = namedtuple("Offsets", names)(*starts)
-        #: the length of the array
+        #: the number of entries (rows, with ``width``) of the array
         self.size = at
+        #: the length of each row (None: a flat array)
+        self.width = None if width is None else int(width)
+
+    @classmethod
+    def of_names(cls, names, width: int | None = None) -> "ArrayLayout":
+        """The layout of one entry per name (a controller that lists its ``signal_names`` only)."""
+        return cls(*((str(n), 1) for n in names), width=width)
+
+    @classmethod
+    def rows(cls, n: int, width: int = 4) -> "ArrayLayout":
+        """``n`` unnamed scratch rows of ``width`` floats (a controller that gives its ``work_rows`` only)."""
+        return cls(("rows", n), width=width) if int(n) > 0 else cls(width=width)
 
     @property
     def names(self) -> tuple:
         return self.offsets._fields
+
+    @property
+    def entry_names(self) -> tuple:
+        """The name of every entry, in order (a field of size 1 keeps its own name)."""
+        return tuple(lab for name in self.names for lab in self.labels[name])
+
+    @property
+    def shape(self) -> tuple:
+        """The shape of the array: ``(size,)``, or ``(size, width)`` for rows."""
+        return (self.size,) if self.width is None else (self.size, self.width)
+
+    def zeros(self) -> "np.ndarray":  # noqa: F821
+        """A new zeroed float array of :attr:`shape`."""
+        import numpy as np  # noqa: PLC0415
+
+        return np.zeros(self.shape)
 
     def pack(self, **values):
         """The flat float array holding ``values`` (one per field, a number or ``size`` numbers) in the
@@ -201,4 +249,62 @@ class ArrayLayout:
         return out
 
     def __repr__(self):
-        return "ArrayLayout(" + ", ".join(f"({n!r}, {self.sizes[n]})" for n in self.names) + ")"
+        fields = ", ".join(f"({n!r}, {self.sizes[n]})" for n in self.names)
+        return f"ArrayLayout({fields}{'' if self.width is None else f', width={self.width}'})"
+
+
+# --------------------------------------------------------------------------------------------------
+# the numba types of the closed loop (declared here once) and the decorator of a controller's law
+# --------------------------------------------------------------------------------------------------
+from collections import namedtuple as _namedtuple  # noqa: E402
+
+#: The controller's arrays a law receives at every sample, in the order of :data:`LAW_SIGNATURE`: ``gains``,
+#: ``model`` and ``state`` (flat) and the scratch ``work`` (rows of 4).
+LawData = _namedtuple("LawData", ("gains", "model", "state", "work"))
+
+if COMPILED:
+    from numba import types as numba_types
+
+    _t = numba_types
+    #: a C-contiguous float vector / matrix / int vector (the only array types of the compiled loops)
+    VECTOR = _t.float64[::1]
+    MATRIX = _t.float64[:, ::1]
+    INT_VECTOR = _t.int64[::1]
+    #: ``int64 law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)``
+    LAW_SIGNATURE = _t.int64(_t.int64, _t.float64, _t.float64, VECTOR, VECTOR, VECTOR, VECTOR, VECTOR, VECTOR,
+                             MATRIX, VECTOR, VECTOR)
+    #: the type of a law passed to a compiled loop (a first-class function)
+    LAW_TYPE = _t.FunctionType(LAW_SIGNATURE)
+    #: the type of a :data:`LawData`
+    LAW_DATA_TYPE = _t.NamedTuple((VECTOR, VECTOR, VECTOR, MATRIX), LawData)
+else:  # pragma: no cover - plain Python
+    numba_types = VECTOR = MATRIX = INT_VECTOR = LAW_TYPE = LAW_DATA_TYPE = None
+    LAW_SIGNATURE = "int64(int64, float64, float64, f8[::1] x6, f8[:, ::1], f8[::1], f8[::1])"
+
+
+def control_law(fn):
+    """Make ``fn`` a controller's step kernel: a numba dispatcher (cached on disk) that the engine compiles
+    with :data:`LAW_SIGNATURE` when it first runs it (:func:`compiled_law`), not at import.
+
+    The law is compiled without numba's reference counting (``_nrt=False``): it must not allocate arrays (it
+    writes into the arrays it is given), and in exchange no array view it takes (``work[0]``) costs a
+    reference-count update per sample. Without numba the function is returned unchanged. The arguments are
+    those of :class:`scara._simulate.Controller` (the contract of a law).
+    """
+    if not COMPILED:
+        return fn
+    return _numba.njit(cache=True, _nrt=False)(fn)
+
+
+def compiled_law(law):
+    """``law`` compiled for :data:`LAW_SIGNATURE` (loaded from the cache when it is there), ready to be passed
+    to a compiled loop; returned unchanged without numba or when it is not a numba dispatcher.
+    Raises ``TypeError`` when it was already compiled for the same arguments with another return type."""
+    if not COMPILED:
+        return law
+    return ensure_signature(law, LAW_SIGNATURE)
+
+
+def python_law(law):
+    """The plain-Python function behind a :func:`control_law` (the law itself without numba)."""
+    return getattr(dispatcher_of(law), "py_func", law)

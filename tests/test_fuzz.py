@@ -351,6 +351,7 @@ TABLE = [
     Entry("dynamics", "params_from_pi", lambda: [pi_arg(), F.params_arg("base"), scalar("rtol", 1e-12, 1e-3, True)]),
     Entry("dynamics", "payload_from_pi", lambda: [pi_arg(), F.params_arg("base")]),
     Entry("dynamics", "inertia", lambda: [q_arg(), _p()]),
+    Entry("dynamics", "inertia_split", lambda: [q_arg(), _p()]),
     Entry("dynamics", "coriolis", lambda: [q_arg(), q_arg("qd"), _p()]),
     Entry("dynamics", "gravity", lambda: [q_arg(), _p()]),
     Entry("dynamics", "friction", lambda: [_p()]),
@@ -653,7 +654,7 @@ NOT_FUZZED = {
     "manipulability_kernel", "inertia_kernel", "coriolis_kernel", "coriolis_vector_kernel", "gravity_kernel",
     "friction_kernel", "inverse_dynamics_kernel", "bias_kernel", "forward_dynamics_kernel", "regressor_kernel",
     "pi_kernel", "lumped_parameters", "inertia_parts", "kinetic_energy_kernel", "potential_energy_kernel",
-    "cholesky_solve4", "closed_loop_kernel",
+    "cholesky_solve4", "closed_loop_kernel", "tool_motion_kernel", "reach_kernel",
     # the decorator that compiles a user's control law (takes a Python function, not numbers)
     "control_law",
     # the chapter-6 name of scara.gains.gain_vector (the same function, fuzzed under that name)

@@ -168,8 +168,8 @@ def test_reference_scenario_steady_state(scenario):
     vertical error."""
     _, r = scenario
     s = r.summary()
-    assert s["steady_state_error"][2] == pytest.approx(5.0 * 9.81 / 10000.0, abs=1e-8)
-    assert np.abs(s["steady_state_error"][[0, 1, 3]]).max() < 1e-8
+    assert s["steady_state_error_components"][2] == pytest.approx(5.0 * 9.81 / 10000.0, abs=1e-8)
+    assert np.abs(s["steady_state_error_components"][[0, 1, 3]]).max() < 1e-8
     assert r.t[-1] == pytest.approx(70.0) and r.q.shape == r.qd.shape == r.qdd.shape == r.tau.shape == (70001, 4)
     assert np.allclose(r.x, pose(r.q, P5)) and np.allclose(r.e, r.x_d - r.x)
     assert r.reference_kind == "joint" and r.q_d.shape == (70001, 4)
@@ -262,7 +262,7 @@ def test_operational_controller_gets_operational_references(scenario):
     assert np.array_equal(r.reference[:, :4], traj.x)
     assert np.allclose(r.q[0], traj.q0, atol=1e-12)
     assert np.allclose(np.column_stack([r.ex, r.ey, r.ez, r.ephi]), r.e, rtol=0, atol=1e-12)
-    assert r.summary()["steady_state_error"][2] == pytest.approx(5.0 * 9.81 / 1e4, abs=1e-8)
+    assert r.summary()["steady_state_error_components"][2] == pytest.approx(5.0 * 9.81 / 1e4, abs=1e-8)
     with pytest.raises(ScaraError, match="joint reference"):
         r.joint_error  # noqa: B018
 
@@ -454,10 +454,11 @@ def test_duration_must_be_a_whole_number_of_samples():
 def test_counts_are_bounded_before_any_work():
     c = PDGravityController()
     ref = joint_setpoint(Q0, 0.1)
-    with pytest.raises(ScaraError, match=r"substeps = 1001 exceeds its limit 1000"):
+    with pytest.raises(ScaraError, match=r"substeps = 1001 .*outside the allowed range 1 <= substeps <= 1000"):
         simulate(c, plant=P5, joint_reference=ref, substeps=1001)
     for bad in (1.5, "3", True, 2.0):
-        with pytest.raises(ScaraError, match=r"substeps = .* must be a whole number \(an int\) between 1 and 1000"):
+        with pytest.raises(ScaraError, match=r"substeps = .* must be a whole number \(an int\) of .*between 1 and "
+                                             r"1000"):
             simulate(c, plant=P5, joint_reference=ref, substeps=bad)
     with pytest.raises(ScaraError, match=r"duration = 1e\+07 s at dt = 0\.001 s asks for 1e\+10 samples, past the "
                                          r"limit of 5000000 samples"):
@@ -506,8 +507,9 @@ def test_result_options_must_be_finite_and_positive(scenario):
 
 
 def test_overflowing_steady_state_error_is_refused():
-    with pytest.raises(ScaraError, match=r"steady-state error is not finite .*K_P3 = 10000, payload m_L = 1e\+308 kg"):
-        PDGravityController().steady_state_error(P0.with_payload(1e308))
+    # the heaviest payload the parameters accept, on a vanishing quill gain: the error overflows
+    with pytest.raises(ScaraError, match=r"m_L = 1\.e\+09 gives a non-finite steady-state error"):
+        PDGravityController(K_P=(1e4, 4e3, 1e-300, 600.0)).steady_state_error(P0.with_payload(1e9))
 
 
 def test_a_trajectory_without_its_fields_is_refused():
@@ -520,3 +522,184 @@ def test_a_trajectory_without_its_fields_is_refused():
     with pytest.raises(ScaraError, match=r"has no attribute 'x'"):
         simulate(PDGravityController(), SimpleNamespace(t=np.arange(11) * 1e-3), P0,
                  joint_reference=joint_setpoint(Q0, 0.01))
+
+
+# --------------------------------------------------------------------------------------------------
+# the contract enforced: a law stays inside the arrays its layouts declare, and the process never dies
+# --------------------------------------------------------------------------------------------------
+from scara._compile import ArrayLayout  # noqa: E402
+from scara.dynamics import inverse_dynamics_kernel  # noqa: E402
+
+
+@control_law
+def _undeclared_rows_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    for r in range(6):  # six rows, the controller declares two
+        for i in range(4):
+            work[r, i] = 1.0
+    return 0
+
+
+@control_law
+def _kernel_overflow_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    inverse_dynamics_kernel(q, qd, ref[8:12], model, work, tau)  # the kernel's B takes four rows of work
+    return 0
+
+
+@control_law
+def _past_signals_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    signals[2] = 1.0
+    return 0
+
+
+@control_law
+def _past_gains_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    for i in range(4):
+        tau[i] = gains[4 + i]
+    return 0
+
+
+@control_law
+def _kernel_reads_past_gains_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    from scara.control._common import torque_code  # noqa: PLC0415
+
+    return torque_code(tau, gains, 8)
+
+
+def _open_loop(law, work_rows=0, signals=(), gains=np.zeros(4)):
+    class _C(Controller):
+        name = "user_law"
+        reference_kind = "none"
+        work_layout = ArrayLayout(("rows", work_rows), width=4) if work_rows else ArrayLayout(width=4)
+        signals_layout = ArrayLayout.of_names(signals)
+
+        def gains_array(self):
+            return gains
+
+    _C.law = staticmethod(law)
+    return _C()
+
+
+@pytest.mark.parametrize("law, rows, signals, match", [
+    (_undeclared_rows_law, 2, (), r"indexes work\[.*2.*past its declared size: work holds 2 rows of 4"),
+    # compiled, the kernel's writes land in the guard rows; in plain Python its own slicing is checked
+    (_kernel_overflow_law, 2, (), r"(writes work\[2\]|indexes work\[0:4\] on axis 0 of size 2), past its declared "
+                                  r"size: work holds 2 rows of 4"),
+    (_past_signals_law, 0, ("a", "b"), r"indexes signals\[2\].*past its declared size: signals holds 2 entries"),
+    (_past_gains_law, 0, (), r"indexes gains\[4\].*past its declared size: gains holds 4 entries"),
+    (_kernel_reads_past_gains_law, 0, (), r"(reads past gains|indexes gains\[8\].*, past its declared size): gains "
+                                          r"holds 4 entries"),
+])
+def test_a_law_outside_its_arrays_is_refused_before_the_compiled_run(law, rows, signals, match):
+    """Without bounds checks a compiled law writing rows it did not declare corrupts the heap (the process dies
+    with ``free(): invalid pointer``); the trial call on guarded copies refuses it with the array and its size."""
+    c = _open_loop(law, rows, signals)
+    with pytest.raises(ScaraError, match=match):
+        simulate(c, duration=0.01, q0=Q0)
+    # the controller's own arrays were never touched: a fresh run is refused the same way
+    with pytest.raises(ScaraError, match=match):
+        simulate(c, duration=0.01, q0=Q0)
+
+
+def test_arrays_of_another_size_than_declared_are_refused():
+    class _Short(PDGravityController):
+        def gains_array(self):
+            return super().gains_array()[:6]
+
+    with pytest.raises(ScaraError, match=r"gains array of controller pd_gravity holds 6 numbers, but its gains_layout "
+                                         r"declares 8"):
+        simulate(_Short(), plant=P5, joint_reference=joint_setpoint(Q0, 0.01), q0=Q0)
+    from scara import AdaptiveController
+
+    class _NoState(AdaptiveController):
+        def initial_state(self):
+            return np.zeros(3)
+
+    with pytest.raises(ScaraError, match=r"state array of controller adaptive holds 3 numbers, but its state_layout "
+                                         r"declares 13"):
+        simulate(_NoState(), plant=P5, joint_reference=joint_setpoint(Q0, 0.01), q0=Q0)
+
+
+@control_law
+def _nan_signal_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    signals[0] = 0.0
+    signals[1] = np.nan if k == 30 else 1.0
+    return 0
+
+
+@control_law
+def _inf_torque_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
+    tau[2] = np.inf if k == 40 else 0.0
+    return 0
+
+
+def test_non_finite_signals_and_torques_stop_the_run_naming_time_signal_and_value():
+    with pytest.raises(UnstableError, match=r"diverged at t = 0\.0300 s \(sample 30\): the controller's law returned "
+                                            r"the signal 'b' = nan, which is not finite"):
+        simulate(_open_loop(_nan_signal_law, signals=("a", "b")), duration=0.1, q0=Q0)
+    with pytest.raises(UnstableError, match=r"diverged at t = 0\.0400 s \(sample 40\): the controller's law returned "
+                                            r"the torque tau_3 = inf, which is not finite"):
+        simulate(_open_loop(_inf_torque_law), duration=0.1, q0=Q0)
+
+
+def test_helpers_given_another_kind_of_run_name_what_they_need():
+    from scara import AdaptiveController, OperationalSpaceController, RobustController
+    from scara.control import control_summary, replay_law
+
+    pd = simulate(PDGravityController(), plant=P5, joint_reference=joint_setpoint(Q0, 0.05), q0=Q0)
+    with pytest.raises(ScaraError, match=r"final_estimate needs a run whose law keeps a state of 13 numbers; the run "
+                                         r"of 'pd_gravity' kept 0 numbers"):
+        AdaptiveController.final_estimate(pd)
+    with pytest.raises(ScaraError, match=r"uncertainty needs a run that records the signals \['w_1', 'w_2', 'w_3', "
+                                         r"'w_4'\]; the run of 'pd_gravity' records \['gravity_compensation'\]"):
+        RobustController().uncertainty(pd)
+    with pytest.raises(ScaraError, match=r"no attribute or signal 'payload_estimate'.*'pd_gravity'"):
+        pd.payload_estimate  # noqa: B018
+    assert not hasattr(pd, "payload_estimate")  # still an AttributeError for getattr and hasattr
+    with pytest.raises(ScaraError, match=r"reads a 'operational' reference, but the run of pd_gravity recorded a "
+                                         r"'joint' one"):
+        replay_law(OperationalSpaceController(), pd)
+    with pytest.raises(ScaraError, match=r"result is a run of 'pd_gravity', controller = 'robust'"):
+        control_summary(pd, RobustController(), repeats=1)
+
+
+def test_design_sweeps_are_bounded_or_compiled():
+    """The sweeps over configurations run in one compiled loop (70,001 configurations in well under a second, the
+    same matrices as one call of ``inertia`` each); the optimiser, which evaluates them thousands of times, is
+    bounded."""
+    import time
+
+    from scara import inertia
+    from scara.control import design_inertia_estimate, inertia_uncertainty, joint_inertia_spread
+
+    q = np.tile(Q0, (70_001, 1))
+    q[:, 1] += np.linspace(-1.0, 1.0, len(q))
+    t0 = time.perf_counter()
+    inertia_uncertainty((8.6, 6.0, 22.5, 1.4), q)
+    joint_inertia_spread(q)
+    assert time.perf_counter() - t0 < 20.0
+    sub = q[::7000]
+    Bh = np.diag([8.6, 6.0, 22.5, 1.4])
+    expected = max(np.linalg.norm(np.eye(4) - np.linalg.solve(inertia(qk, P0.with_payload(m)), Bh), 2)
+                   for m in (0.0, 10.0) for qk in sub)
+    assert inertia_uncertainty((8.6, 6.0, 22.5, 1.4), sub) == pytest.approx(expected, rel=1e-13)
+    with pytest.raises(ScaraError, match=r"len\(q\) \* len\(payloads\) = 140002 inertia matrices is outside the "
+                                         r"allowed range 1 <= len\(q\) \* len\(payloads\) <= 5000"):
+        design_inertia_estimate(q)
+
+
+def test_the_result_shares_no_memory_with_the_callers_arrays():
+    ref = joint_setpoint(Q0, 0.05)
+    r = simulate(PDGravityController(), plant=P5, joint_reference=ref, q0=Q0)
+    assert not np.shares_memory(r.reference, ref) and not np.shares_memory(r.q_d, ref)
+    assert np.array_equal(r.reference, ref)
+    traj = reference_trajectory()
+    from scara import OperationalSpaceController
+
+    short = type("T", (), dict(t=traj.t[:50], x=traj.x[:50], xd=traj.xd[:50], xdd=traj.xdd[:50], dt=traj.dt))()
+    r = simulate(OperationalSpaceController(), short, P5)
+    assert not np.shares_memory(r.x_d, traj.x) and np.array_equal(r.x_d, traj.x[:50])
+
+
+def test_an_empty_reference_is_refused():
+    with pytest.raises(ShapeError, match=r"the reference holds 0 samples: a run needs at least one"):
+        simulate(PDGravityController(), joint_reference=np.zeros((0, 12)), q0=Q0)

@@ -9,36 +9,15 @@ At every sample ``t_k = k dt`` the controller reads the measured ``q(t_k), qd(t_
 
 The controller interface
 ------------------------
-A controller is any object (subclass :class:`Controller` for the defaults) with
-
-``law``
-    A compiled step kernel with exactly the signature :data:`LAW_SIGNATURE`, made with the decorator
-    :func:`control_law`::
-
-        @control_law
-        def law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-            ...            # write tau[0:4] and signals[:]; update state[:] in place
-            return OK      # OK (0) = fine; any other integer stops the run with an UnstableError
-
-    ``k`` (int) sample index, ``t = k dt`` (s), ``dt`` (s) sampling period; ``q``, ``qd`` (4,) measured
-    state (read only); ``ref`` (12,) reference row ``[pos(4), vel(4), acc(4)]``; ``gains`` (n_g,) and
-    ``model`` (n_m,) constant float arrays; ``state`` (n_s,) persistent memory (integrators, estimates),
-    carried from one sample to the next; ``work`` (work_rows, 4) scratch (4x4 matrices are
-    ``work[0:4]``...), not kept between samples; ``signals`` (len(signal_names),) the row of internal signals
-    recorded at this sample; ``tau`` (4,) the torque to apply. The law must not allocate arrays: it calls the
-    compiled kernels of :mod:`scara.dynamics` and :mod:`scara.kinematics` with ``model`` and its scratch.
-
-``reference_kind``
-    ``"joint"``: ``ref = [q_d, qd_d, qdd_d]`` from ``clik2(traj)`` (or ``joint_reference=``);
-    ``"operational"``: ``ref = [x_d, xd_d, xdd_d]`` from the trajectory; ``"none"``: zeros (open loop).
-``gains_array()``, ``model_array()``, ``initial_state()``
-    The flat float arrays passed as ``gains``, ``model`` (by default ``dynamic_array`` of the controller's
-    own parameter object ``self.model``, which does not know the payload) and the initial ``state``. A
-    controller declares its gains once with :class:`scara._compile.ArrayLayout`: the law reads the offsets
-    it gives, ``gains_array()`` returns its ``pack(...)`` (see :data:`PD_GAINS`).
-``signal_names``, ``work_rows``, ``name``
-    Names of the recorded internal signals (they become ``result.signals[name]`` and attributes of the
-    result), rows of the scratch array, and the label used in tables and legends.
+A controller is any object (subclass :class:`Controller` for the defaults) that follows the contract written,
+as a numbered list, in the docstring of :class:`Controller` (``help(scara.Controller)``; read it first): a
+compiled ``law`` with the signature :data:`LAW_SIGNATURE` (made with :func:`control_law`), its
+``reference_kind``, and five arrays each declared once by a :class:`scara._compile.ArrayLayout`: the constant
+``gains`` and ``model``, the ``state`` carried between samples, the scratch ``work`` rows and the recorded
+``signals`` (whose entry names are ``signal_names``). One function, :func:`~.interface.law_arrays`, prepares
+those arrays for the engine and for any replay of a law (:func:`scara.control.replay_law`), and a trial call
+on bounds-checked copies (:func:`~.interface.check_law_bounds`) refuses a law that would read or write past
+them before the compiled run.
 
 The engine's loop :func:`closed_loop_kernel` takes the law as a first-class function argument of type
 ``numba.types.FunctionType(LAW_SIGNATURE)``; because both the loop and the laws are compiled for explicit
@@ -46,9 +25,9 @@ signatures, numba's on-disk cache works for every controller (a dispatcher-typed
 loop in every new process). Both are compiled (or loaded from the cache) when first used, by :func:`simulate`,
 not at import. Without numba (``SCARA_NO_NUMBA=1``) the same loop and laws run as plain Python.
 
-The package, one job per module (imports flow down this list): :mod:`.interface` (the law signature, the
-decorator, :class:`Controller`, the status codes), :mod:`.plant` (the plant's acceleration and RK4 step),
-:mod:`.controllers` (the two controllers of chapter 5), :mod:`.reference` (the references a controller
+The package, one job per module (imports flow down this list): :mod:`.interface` (the contract :class:`Controller`,
+the preparation and check of a law's arrays, the status codes), :mod:`.plant` (the plant's acceleration and RK4 step),
+:mod:`.controllers` (the two controllers of chapter 5), :mod:`.setpoints` (the references a controller
 receives), :mod:`.result` (:class:`SimulationResult`) and :mod:`.engine` (the compiled loop and
 :func:`simulate`).
 
@@ -60,10 +39,11 @@ from __future__ import annotations
 from .controllers import PD_GAINS, TORQUE_GAINS, PDGravityController, TorqueController, pd_gravity_law, torque_law
 from .engine import closed_loop_kernel, simulate
 from .interface import (
-    DIVERGED, JOINT_LIMIT, LAW_FAILED, LAW_SIGNATURE, OK, SINGULAR_INERTIA, Controller, _compiled_law, control_law,
+    DIVERGED, JOINT_LIMIT, LAW_FAILED, LAW_SIGNATURE, NOT_FINITE, OK, SINGULAR_INERTIA, Controller, _compiled_law,
+    check_law_bounds, control_law, law_arrays,
 )
 from .plant import PlantConstants, _plant_acceleration, _plant_constants, _rk4_step
-from .reference import (
+from .setpoints import (
     _clik2_reference, _joint_reference_array, _operational_from_joint, ikine_reference, joint_setpoint,
 )
 from .result import SimulationResult

@@ -6,16 +6,20 @@ import numpy as np
 
 from .._compile import ArrayLayout
 from ..dynamics import gravity_kernel
-from ..errors import as_array
+from ..errors import as_array, check_finite_result
 from ..gains import gain_vector
 from ..params import ScaraParams
-from .interface import OK, Controller, _finite_result, control_law
+from .interface import OK, REF_POS, REF_VEL, WORK_WIDTH, Controller, control_law
 
 __all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "PD_GAINS", "TORQUE_GAINS"]
 
-#: The gain arrays of the two controllers below.
+#: The arrays of the two controllers below (gains, scratch rows, signals; neither keeps a state).
 PD_GAINS = ArrayLayout(("K_P", 4), ("K_D", 4))
 _PD_KP, _PD_KD = PD_GAINS.offsets
+PD_WORK = ArrayLayout(("g_hat", 1), width=WORK_WIDTH)
+(_PD_W_G,) = PD_WORK.offsets
+PD_SIGNALS = ArrayLayout(("gravity_compensation", 1))
+(_PD_S_G,) = PD_SIGNALS.offsets
 TORQUE_GAINS = ArrayLayout(("tau", 4))
 (_TORQUE,) = TORQUE_GAINS.offsets
 
@@ -24,18 +28,19 @@ TORQUE_GAINS = ArrayLayout(("tau", 4))
 def pd_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """PD plus gravity compensation (Siciliano et al. eq. 8.53): ``tau = K_P (q_d - q) + K_D (qd_d - qd) +
     g_hat(q)``, with ``gains = [K_P(4), K_D(4)]`` and ``g_hat`` from the controller's ``model``.
-    ``signals = [g_hat_3]`` (the compensated quill weight, N)."""
-    g = work[0]
+    ``signals = [g_hat_3]`` (the compensated quill weight, N). The twelve arguments are the engine's fixed
+    :data:`~scara._compile.LAW_SIGNATURE`, as for every law."""
+    g = work[_PD_W_G]
     gravity_kernel(q, model, g)
     for i in range(4):
-        tau[i] = gains[_PD_KP + i] * (ref[i] - q[i]) + gains[_PD_KD + i] * (ref[4 + i] - qd[i]) + g[i]
-    signals[0] = g[2]
+        tau[i] = gains[_PD_KP + i] * (ref[REF_POS + i] - q[i]) + gains[_PD_KD + i] * (ref[REF_VEL + i] - qd[i]) + g[i]
+    signals[_PD_S_G] = g[2]
     return OK
 
 
 @control_law
 def torque_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Open loop: a constant torque ``tau = gains[0:4]`` (zero for free motion)."""
+    """Open loop: a constant torque ``tau = gains[0:4]`` (zero for free motion); the engine's fixed signature."""
     for i in range(4):
         tau[i] = gains[_TORQUE + i]
     return OK
@@ -64,8 +69,10 @@ class PDGravityController(Controller):
     law = staticmethod(pd_gravity_law)
     name = "pd_gravity"
     reference_kind = "joint"
-    signal_names = ("gravity_compensation",)
-    work_rows = 1
+    gains_layout = PD_GAINS
+    state_layout = ArrayLayout()
+    work_layout = PD_WORK
+    signals_layout = PD_SIGNALS
 
     def __init__(self, K_P=(10000.0, 4000.0, 10000.0, 600.0), K_D=(1000.0, 400.0, 1000.0, 60.0),
                  model: ScaraParams | None = None):
@@ -84,7 +91,7 @@ class PDGravityController(Controller):
         with np.errstate(over="ignore", invalid="ignore"):
             e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf
         if self.K_P[2] > 0:  # K_P3 = 0 leaves the quill uncorrected: an infinite error, on purpose
-            _finite_result(e, "the steady-state error", f"K_P3 = {self.K_P[2]:g}, payload m_L = {plant.m_L:g} kg")
+            check_finite_result(e, "steady-state error", K_P3=self.K_P[2], m_L=plant.m_L)
         return e
 
     def __repr__(self):
@@ -97,6 +104,8 @@ class TorqueController(Controller):
     law = staticmethod(torque_law)
     name = "torque"
     reference_kind = "none"
+    gains_layout = TORQUE_GAINS
+    state_layout = ArrayLayout()
 
     def __init__(self, tau=(0.0, 0.0, 0.0, 0.0)):
         self.tau = as_array(tau, "tau", (4,)).copy()

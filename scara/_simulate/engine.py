@@ -9,18 +9,19 @@ from collections import namedtuple
 import numpy as np
 
 from .. import _compile
+from .._compile import LawData
 from ..dynamics import dynamic_array
-from ..errors import ScaraError, UnstableError, check_positive
+from ..errors import ScaraError, ShapeError, UnstableError, check_count, check_positive
 from ..params import ScaraParams
-from .interface import _LAW_TYPE, DIVERGED, JOINT_LIMIT, LAW_FAILED, OK, SINGULAR_INERTIA, _compiled_law, _count
+from .interface import (
+    DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
+)
 from .plant import _plant_acceleration, _plant_constants, _rk4_step
-from .reference import _references, _start_state
+from .setpoints import _references, _start_state
 from .result import SimulationResult, _pose_error
 
 __all__ = ["closed_loop_kernel", "simulate"]
 
-#: The controller's arrays the loop hands to the law at every sample (see the package's docstring).
-LawData = namedtuple("LawData", ("gains", "model", "state", "work"))
 #: What the loop records, one row per sample: ``q, qd, qdd, tau`` (N, 4) and the law's signals (N, n_sig).
 Series = namedtuple("Series", ("q", "qd", "qdd", "tau", "signals"))
 #: The run's settings: sampling period (s), RK4 steps per period, the bound on any state or torque entry, and
@@ -33,15 +34,40 @@ Stepping = namedtuple("Stepping", ("dt", "substeps", "limit", "d3_mid", "d3_half
 MAX_SUBSTEPS = 1000
 
 if _compile.COMPILED:
-    from numba import types as _t
-
-    _v = _t.float64[::1]
-    _m = _t.float64[:, ::1]
+    _t = _compile.numba_types
     _STEPPING = _t.NamedTuple((_t.float64, _t.int64, _t.float64, _t.float64, _t.float64), Stepping)
-    _LOOP_SIGNATURE = _t.void(_LAW_TYPE, _t.UniTuple(_v, 2), _m, _STEPPING, _v,
-                              _t.NamedTuple((_v, _v, _v, _m), LawData), _t.NamedUniTuple(_m, 5, Series), _t.int64[::1])
+    _LOOP_SIGNATURE = _t.void(_compile.LAW_TYPE, _t.UniTuple(_compile.VECTOR, 2), _compile.MATRIX, _STEPPING,
+                              _compile.VECTOR, _compile.LAW_DATA_TYPE, _t.NamedUniTuple(_compile.MATRIX, 5, Series),
+                              _compile.INT_VECTOR)
 else:  # pragma: no cover - plain Python
     _LOOP_SIGNATURE = None
+
+
+@_compile.kernel
+def _torque_failure(tau, k, info):
+    """Record why a torque of sample ``k`` failed the limit check: :data:`NOT_FINITE` with the index of the
+    first NaN or infinite entry of ``tau`` in ``info[2]``, or :data:`DIVERGED` (finite, past the limit)."""
+    info[0] = DIVERGED
+    info[1] = k
+    info[2] = 0
+    for i in range(4):
+        if not math.isfinite(tau[i]):
+            info[0] = NOT_FINITE
+            info[2] = i
+            return
+
+
+def _first_bad_signal(sig_out, end):
+    """``(k, i)`` of the first NaN or infinite signal among the first ``end`` samples, or None. Checked once
+    after the loop, over the whole block (a check per sample inside the loop would cost it about 5 %)."""
+    block = sig_out[:end]
+    if np.isfinite(np.sum(block)):  # the usual case, without a temporary: NaN and inf propagate into the sum
+        return None
+    bad = ~np.isfinite(block)
+    if not bad.any():  # finite signals whose sum overflowed
+        return None
+    k, i = np.argwhere(bad)[0]
+    return int(k), int(i)
 
 
 @_compile.signature_kernel(_LOOP_SIGNATURE)
@@ -51,7 +77,9 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     ``start = (q0, qd0)``; ``stepping`` a :data:`Stepping`; ``plant_dp`` the plant's
     :func:`~scara.dynamics.dynamic_array`; ``data`` the law's :data:`LawData`. Writes the :data:`Series`
     ``out``. ``info`` (3,) int64 receives ``[code, k, law_code]``: :data:`OK` when all samples ran, otherwise
-    :data:`LAW_FAILED`, :data:`DIVERGED` (a state not finite or above ``limit``), :data:`SINGULAR_INERTIA` or
+    :data:`LAW_FAILED`, :data:`NOT_FINITE` (a NaN or infinite torque of the law, whose index is in ``info[2]``;
+    the signals are checked after the loop, :func:`_first_bad_signal`), :data:`DIVERGED` (a state not finite or
+    above ``limit``), :data:`SINGULAR_INERTIA` or
     :data:`JOINT_LIMIT` (``d3`` left its stroke; that state is written in row ``k`` of ``out.q``, ``out.qd``),
     at sample ``k``. Only ``d3`` has limits: one comparison per step checks it.
 
@@ -106,11 +134,10 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
             return
         ok = True
         for i in range(4):
-            if not abs(tau[i]) < limit:
+            if not abs(tau[i]) < limit:  # also catches NaN
                 ok = False
         if not ok:
-            info[0] = DIVERGED
-            info[1] = k
+            _torque_failure(tau, k, info)
             return
         if k == n - 1:
             a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
@@ -181,18 +208,28 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     kind, dt, substeps = _check_run(controller, traj, dt, substeps)
     limit = check_positive(limit, "limit")
     ref, jref, x_d, xop, n = _references(kind, traj, joint_reference, duration, dt, plant)
+    if n < 1:
+        raise ShapeError(f"the reference holds {n} samples: a run needs at least one (N >= 1)")
     q0, qd0 = _start_state(q0, qd0, jref, xop, traj, plant, elbow)
-    out, state, info, elapsed = _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit)
+    stepping = Stepping(float(dt), int(substeps), float(limit), 0.5 * (plant.d3_min + plant.d3_max),
+                        0.5 * (plant.d3_max - plant.d3_min))
+    out, state, info, elapsed, names = _run_loop(controller, (q0, qd0), ref, stepping, plant)
+    bad_signal = _first_bad_signal(out[6], n if info[0] == OK else int(info[1]) + 1)
+    if bad_signal is not None and (info[0] == OK or bad_signal[0] < info[1]):  # the run's first failure
+        info[:] = NOT_FINITE, bad_signal[0], 4 + bad_signal[1]
     if info[0] != OK:
-        _raise_failure(controller, info, dt, limit, out, plant)
-    q_out, qd_out, qdd_out, tau_out, x, e, sig_out = out
+        _raise_failure(controller, info, dt, limit, out, plant, names)
+    q_out, qd_out, qdd_out, tau_out, x, e, sig_out, spare = out
     _pose_error(q_out, q_out if x_d is None else np.ascontiguousarray(x_d), plant.a1, plant.a2, plant.d0, x, e)
     if x_d is None:
-        x_d = x.copy()
+        spare[:] = x
+        x_d = spare
         e[:] = 0.0
-    names = tuple(controller.signal_names)
+    inputs = (traj, joint_reference)
+    ref, x_d = _owned(ref, inputs), _owned(x_d, inputs, into=spare)  # x_d is often the caller's traj.x
     return SimulationResult(t=np.arange(n) * dt, q=q_out, qd=qd_out, qdd=qdd_out, tau=tau_out, x=x, x_d=x_d, e=e,
-                            reference=ref, reference_kind=kind, q_d=None if jref is None else jref[:, :4],
+                            reference=ref, reference_kind=kind,
+                            q_d=None if jref is None else _owned(jref[:, :4], inputs),
                             signals={nm: np.ascontiguousarray(sig_out[:, i]) for i, nm in enumerate(names)},
                             controller=getattr(controller, "name", type(controller).__name__), plant=plant,
                             dt=dt, substeps=substeps, elapsed=elapsed,
@@ -203,8 +240,8 @@ def _check_run(controller, traj, dt, substeps):
     """The checked ``(reference_kind, dt, substeps)`` of a run (see :func:`simulate`)."""
     if not hasattr(controller, "law") or controller.law is None:
         raise ScaraError(f"controller {controller!r} has no compiled law: see scara.simulate's interface")
-    substeps = _count(substeps, "substeps", 1, MAX_SUBSTEPS, "1000 RK4 steps per period are already a step of "
-                      "1 us at 1 ms, far below the arm's time constants")
+    substeps = check_count(substeps, "substeps", 1, MAX_SUBSTEPS, "RK4 steps per period", "1000 RK4 steps per "
+                           "period are already a step of 1 us at 1 ms, far below the arm's time constants")
     kind = controller.reference_kind
     if kind not in ("joint", "operational", "none"):
         raise ScaraError(f"reference_kind = {kind!r}; expected 'joint', 'operational' or 'none'")
@@ -217,34 +254,59 @@ def _check_run(controller, traj, dt, substeps):
     return kind, dt, substeps
 
 
-def _run_loop(controller, q0, qd0, ref, dt, substeps, plant, limit):
-    """Run :func:`closed_loop_kernel` with the controller's arrays: ``(series, final state, info, elapsed s)``,
-    ``series = (q, qd, qdd, tau, x, e, signals)`` (``x``, ``e`` still to be filled)."""
+def _caller_arrays(obj):
+    """The arrays a caller handed in ``obj`` (an array, a tuple of them, or an object with array attributes)."""
+    if isinstance(obj, np.ndarray):
+        return [obj]
+    if isinstance(obj, (tuple, list)):
+        return [a for item in obj for a in _caller_arrays(item)]
+    fields = [getattr(obj, f, None) for f in ("t", "x", "xd", "xdd", "q", "qd", "qdd")]  # a trajectory, a clik2 result
+    return [v for v in fields + list(getattr(obj, "__dict__", {}).values()) if isinstance(v, np.ndarray)]
+
+
+def _owned(arr, inputs, into=None):
+    """``arr``, or a copy of it (written into ``into`` when given) when it shares memory with an array of
+    ``inputs``: a result never shares memory with its caller's input."""
+    if arr is into or not any(np.may_share_memory(arr, a) for a in _caller_arrays(inputs)):
+        return arr
+    if into is None:
+        return arr.copy()
+    into[:] = arr
+    return into
+
+
+def _run_loop(controller, start, ref, stepping, plant):
+    """Run :func:`closed_loop_kernel` with the controller's arrays (:func:`~.interface.law_arrays`, checked by a
+    trial call, :func:`~.interface.check_law_bounds`): ``(series, final state, info, elapsed s, signal names)``,
+    ``series = (q, qd, qdd, tau, x, e, signals, spare)`` (``x``, ``e`` still to be filled; ``spare`` (N, 4) for
+    the result's own ``x_d``)."""
     n = len(ref)
-    gains = np.ascontiguousarray(controller.gains_array(), dtype=float)
-    model = np.ascontiguousarray(controller.model_array(), dtype=float)
-    state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
-    work = np.zeros((max(int(controller.work_rows), 0), 4))
-    # one allocation for the six (N, 4) series (each a C-contiguous slice): a block this large is backed by
+    data, sig_out, names = law_arrays(controller, n)
+    check_law_bounds(controller, data, len(names), (start[0], start[1], ref[0]), stepping.dt)
+    # one allocation for the six (N, 4) series and a spare one for x_d (each a C-contiguous slice; the spare is
+    # touched only when used): a block this large is backed by
     # huge pages where the system allows it, which saves thousands of page faults per run
-    block = np.empty((6, n, 4))
-    q_out, qd_out, qdd_out, tau_out, x, e = block
-    sig_out = np.zeros((n, len(controller.signal_names)))
+    block = np.empty((7, n, 4))
+    q_out, qd_out, qdd_out, tau_out, x, e, spare = block
     info = np.zeros(3, dtype=np.int64)
     law = _compiled_law(controller.law)  # compile (or load) the law and the loop before the clock starts
     loop = _compile.dispatcher_of(closed_loop_kernel)
     t0 = time.perf_counter()
-    stepping = Stepping(float(dt), int(substeps), float(limit), 0.5 * (plant.d3_min + plant.d3_max),
-                        0.5 * (plant.d3_max - plant.d3_min))
-    loop(law, (q0, qd0), ref, stepping, dynamic_array(plant),
-         LawData(gains, model, state, work), Series(q_out, qd_out, qdd_out, tau_out, sig_out), info)
+    loop(law, start, ref, stepping, dynamic_array(plant), data, Series(q_out, qd_out, qdd_out, tau_out, sig_out), info)
     elapsed = time.perf_counter() - t0
-    return (q_out, qd_out, qdd_out, tau_out, x, e, sig_out), state, info, elapsed
+    return (q_out, qd_out, qdd_out, tau_out, x, e, sig_out, spare), data.state, info, elapsed, names
 
 
-def _raise_failure(controller, info, dt, limit, out, plant):
+def _raise_failure(controller, info, dt, limit, out, plant, names):
     """The :class:`~scara.UnstableError` of a run the loop stopped (``info = [code, k, law_code]``)."""
     k = int(info[1])
+    label = getattr(controller, "name", controller)
+    if int(info[0]) == NOT_FINITE:
+        i = int(info[2])
+        what = (f"the torque tau_{i + 1} = {out[3][k, i]}" if i < 4 else
+                f"the signal {names[i - 4]!r} = {out[6][k, i - 4]}")
+        raise UnstableError(f"the closed loop of {label} diverged at t = {k * dt:.4f} s (sample {k}): the "
+                            f"controller's law returned {what}, which is not finite")
     if int(info[0]) == JOINT_LIMIT:
         d3, v3 = float(out[0][k, 2]), float(out[1][k, 2])
         end = "d3_max" if d3 > plant.d3_max else "d3_min"

@@ -15,6 +15,11 @@ from ..params import ScaraParams
 __all__ = ["SimulationResult"]
 
 
+class MissingSignalError(ScaraError, AttributeError):
+    """A run has no such attribute or signal (a helper of one kind of controller given another's run): both a
+    :class:`~scara.ScaraError` and the ``AttributeError`` that ``getattr`` and ``hasattr`` expect."""
+
+
 @kernel
 def _pose_error(q, x_d, a1, a2, d0, x, e):
     """``x[k] = k(q[k])`` (:func:`~scara.kinematics.pose_kernel`) and ``e[k] = x_d[k] - x[k]`` for every sample."""
@@ -58,8 +63,8 @@ class SimulationResult:
         signals = self.__dict__.get("signals", {})
         if name in signals:
             return signals[name]
-        raise AttributeError(f"{type(self).__name__} has no attribute or signal {name!r}; "
-                             f"signals: {sorted(signals)}")
+        raise MissingSignalError(f"{type(self).__name__} has no attribute or signal {name!r}: the run of "
+                                 f"{self.__dict__.get('controller', '?')!r} records the signals {sorted(signals)}")
 
     @property
     def joint_error(self) -> np.ndarray:
@@ -93,16 +98,18 @@ class SimulationResult:
         return out
 
     def summary(self, window: float = 2.0) -> dict:
-        """Figures for a chapter's table: per component of ``e = x_d - x`` (m, m, m, rad) its maximum
-        absolute value, RMS, and steady-state value (mean over the last ``window`` seconds); the largest
-        absolute torques; and the run's time. ``window`` (s) must be finite and ``> 0``."""
+        """Figures for a chapter's table: per component of ``e = x_d - x`` (m, m, m, rad), each (4,), its
+        maximum absolute value ``max_abs_error_components``, RMS ``rms_error_components`` and steady-state value
+        ``steady_state_error_components`` (mean over the last ``window`` seconds); the largest absolute torques
+        ``max_abs_tau``; and ``elapsed``, the seconds the compiled loop took. ``window`` (s) must be finite and
+        ``> 0``."""
         window = check_positive(window, "window")
         last = self.t >= self.t[-1] - window + 1e-12
         return {
             "controller": self.controller,
-            "max_abs_error": np.abs(self.e).max(axis=0),
-            "rms_error": np.sqrt(np.mean(self.e ** 2, axis=0)),
-            "steady_state_error": self.e[last].mean(axis=0),
+            "max_abs_error_components": np.abs(self.e).max(axis=0),
+            "rms_error_components": np.sqrt(np.mean(self.e ** 2, axis=0)),
+            "steady_state_error_components": self.e[last].mean(axis=0),
             "max_abs_tau": np.abs(self.tau).max(axis=0),
-            "elapsed_s": self.elapsed,
+            "elapsed": self.elapsed,
         }

@@ -14,15 +14,16 @@ import time
 import numpy as np
 
 from .. import _compile
-from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
+from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_count, check_positive
 from ..gains import gain_vector
 from ..params import ScaraParams
-from .._simulate import LAW_SIGNATURE, OK, Controller, _compiled_law
-from .._simulate.interface import _count
+from .._simulate import OK, Controller, _compiled_law
+from .._simulate.interface import check_law_bounds, law_arrays
 
 __all__ = [
     "TAU_MAX", "MAX_ERROR", "BOUND_FIELDS", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
     "BoundedController", "positive_gains", "control_summary", "chattering", "law_cost", "replay_law",
+    "recorded_signals", "final_state",
 ]
 
 #: The stated actuator bounds (N m, N m, N, N m): a law that asks for more stops the run (code 2). They are
@@ -35,7 +36,8 @@ MAX_REPEATS = 1000
 #: treated as lost (code 3), long before the state becomes large enough for the engine's own limit.
 MAX_ERROR = 0.05
 
-# OK (0) is the engine's own "all is well" (:data:`scara._simulate.OK`); a law's failure codes start at 2
+#: The failure codes a chapter-6 law returns: a torque past its bound, a tracking error past its bound, a
+#: singular Jacobian (``OK``, 0, is the engine's own "all is well"; a law's codes start at 2).
 TORQUE_BOUND, ERROR_BOUND, SINGULAR_JACOBIAN = 2, 3, 4
 #: The meaning of each code a chapter-6 law may return.
 FAILURE_CAUSES = {
@@ -131,14 +133,17 @@ def _run_series(result, shapes: dict) -> dict:
 
 def _check_controller(controller):
     """``controller`` has what :func:`replay_law` needs (a controller of :mod:`scara.simulate`'s interface)."""
-    needs = ("law", "gains_array", "model_array", "initial_state", "work_rows", "signal_names")
+    needs = ("law", "gains_array", "model_array", "initial_state")
     missing = [a for a in needs if not hasattr(controller, a)]
     if missing or getattr(controller, "law", None) is None:
         raise ScaraError(f"controller = {controller!r} is not a controller of scara.simulate's interface (missing "
                          f"{missing or ['a compiled law']})")
 
 
-def _replay(law, q, qd, ref, dt, gains, model, state, work, sig, tau):
+def _replay(law, q, qd, ref, dt, data, sig, tau):
+    """The law alone over the recorded samples (no plant): the index of the first sample whose law code is not
+    :data:`OK`, or -1. Compiled with :data:`~scara._compile.LAW_TYPE` and :data:`~scara._compile.LAW_DATA_TYPE`."""
+    gains, model, state, work = data.gains, data.model, data.state, data.work
     n = q.shape[0]
     for k in range(n):
         code = law(k, k * dt, dt, q[k], qd[k], ref[k], gains, model, state, work, sig[k], tau[k])
@@ -148,43 +153,50 @@ def _replay(law, q, qd, ref, dt, gains, model, state, work, sig, tau):
 
 
 if _compile.COMPILED:
-    from numba import types as _t
-
-    _v = _t.float64[::1]
-    _m = _t.float64[:, ::1]
+    _t, _m = _compile.numba_types, _compile.MATRIX
     # compiled (or loaded from the cache) on the first replay, not at import
     _replay_kernel = _compile.signature_kernel(
-        _t.int64(_t.FunctionType(LAW_SIGNATURE), _m, _m, _m, _t.float64, _v, _v, _v, _m, _m, _m))(_replay)
+        _t.int64(_compile.LAW_TYPE, _m, _m, _m, _t.float64, _compile.LAW_DATA_TYPE, _m, _m))(_replay)
 else:  # pragma: no cover - plain Python
     _replay_kernel = _replay
+
+
+def _check_kind(controller, result):
+    """The run's reference is what ``controller``'s law reads (a joint law replayed on an operational run would
+    read positions as angles)."""
+    kind = getattr(result, "reference_kind", None)
+    want = getattr(controller, "reference_kind", None)
+    if kind is not None and want is not None and kind != want:
+        raise ScaraError(f"controller {getattr(controller, 'name', controller)} reads a {want!r} reference, but the "
+                         f"run of {getattr(result, 'controller', '?')} recorded a {kind!r} one: replay it on a run of "
+                         f"a controller of the same reference_kind")
 
 
 def replay_law(controller, result, n: int | None = None):
     """Run ``controller``'s law alone on the states a run recorded (no plant): ``(tau, signals, state)``.
 
     The law sees the measured ``q``, ``qd`` and the reference of ``result`` sample by sample, starting from
-    ``controller.initial_state()``; its torques (n, 4) must equal ``result.tau`` when the same controller
-    produced the run. Used to time the law (:func:`law_cost`) and to check it against another
-    implementation.
+    ``controller.initial_state()``, with the arrays the engine would give it
+    (:func:`scara._simulate.interface.law_arrays`, checked by the same trial call); its torques (n, 4) must
+    equal ``result.tau`` when the same controller produced the run. Used to time the law (:func:`law_cost`) and
+    to check it against another implementation. The run's ``reference_kind`` must be the controller's.
     """
     _check_controller(controller)
     run = _run_series(result, {"t": (), "q": (4,), "qd": (4,), "reference": (12,)})
+    _check_kind(controller, result)
     dt = check_positive(getattr(result, "dt", None), "result.dt")
     n_run = len(run["t"])
-    n = n_run if n is None else _count(n, "n", 1, n_run, f"the run has {n_run} samples")
+    n = n_run if n is None else check_count(n, "n", 1, n_run, "samples", f"the run has {n_run} samples")
     q = np.ascontiguousarray(run["q"][:n])
     qd = np.ascontiguousarray(run["qd"][:n])
     ref = np.ascontiguousarray(run["reference"][:n])
-    gains = np.ascontiguousarray(controller.gains_array(), dtype=float)
-    model = np.ascontiguousarray(controller.model_array(), dtype=float)
-    state = np.ascontiguousarray(controller.initial_state(), dtype=float).copy()
-    work = np.zeros((max(int(controller.work_rows), 1), 4))
-    sig = np.zeros((n, len(controller.signal_names)))
+    data, sig, names = law_arrays(controller, n)
+    check_law_bounds(controller, data, len(names), (q[0], qd[0], ref[0]), dt)
     tau = np.zeros((n, 4))
-    k = _replay_kernel(_compiled_law(controller.law), q, qd, ref, dt, gains, model, state, work, sig, tau)
+    k = _replay_kernel(_compiled_law(controller.law), q, qd, ref, dt, data, sig, tau)
     if k >= 0:
         raise UnstableError(f"the law of {controller.name} returned a failure at sample {k} while replaying")
-    return tau, sig, state
+    return tau, sig, data.state
 
 
 def law_cost(controller, result, repeats: int = 7) -> float:
@@ -194,7 +206,7 @@ def law_cost(controller, result, repeats: int = 7) -> float:
 
     ``repeats`` is a whole number from 1 to :data:`MAX_REPEATS` (1000); anything else raises
     :class:`~scara.ScaraError` before any replay."""
-    repeats = _count(repeats, "repeats", 1, MAX_REPEATS, "each repeat replays the whole run")
+    repeats = check_count(repeats, "repeats", 1, MAX_REPEATS, "replays", "each repeat replays the whole run")
     _check_controller(controller)
     n = len(_run_series(result, {"t": ()})["t"])
     replay_law(controller, result, min(n, 100))  # warm up
@@ -227,10 +239,11 @@ def control_summary(result, controller=None, *, settle: float = 1.0, rest: float
                     repeats: int = 5) -> dict:
     """The row of the chapter's comparison table for one run.
 
-    Keys: ``controller``; ``max_error`` and ``rms_error`` (m): largest and RMS norm of the position error
-    ``x_d - x_e`` (x, y, z) after the first ``settle`` seconds; ``max_phi_error`` (rad) after ``settle``;
-    ``final_error`` (m): largest position-error norm over the final rest (the last ``rest`` seconds, where the
-    arm is still); ``final_error_z`` (m): mean vertical error there (signed); ``peak_tau`` (4,) largest absolute
+    Keys: ``controller``; ``max_position_error`` and ``rms_position_error`` (m): largest and RMS norm of the
+    position error ``x_d - x_e`` (x, y, z) after the first ``settle`` seconds; ``max_orientation_error`` (rad):
+    largest ``|phi_d - phi|`` after ``settle``; ``final_position_error`` (m): largest position-error norm over the
+    final rest (the last ``rest`` seconds, where the arm is still); ``steady_z_error`` (m): mean vertical error
+    there (signed); ``peak_tau`` (4,) largest absolute
     torques (N m, N m, N, N m); ``chattering`` (:func:`chattering`); ``step_cost`` (s): compute time per
     control step (:func:`law_cost`; only when ``controller`` is given, else NaN).
 
@@ -239,9 +252,13 @@ def control_summary(result, controller=None, *, settle: float = 1.0, rest: float
     """
     settle = check_positive(settle, "settle", strict=False)
     rest = check_positive(rest, "rest")
-    repeats = _count(repeats, "repeats", 1, MAX_REPEATS, "each repeat replays the whole run")
+    repeats = check_count(repeats, "repeats", 1, MAX_REPEATS, "replays", "each repeat replays the whole run")
     if controller is not None:
         _check_controller(controller)
+        made_by = getattr(result, "controller", None)
+        if made_by is not None and made_by != getattr(controller, "name", made_by):
+            raise ScaraError(f"control_summary times the law of the controller that made the run: result is a run "
+                             f"of {made_by!r}, controller = {controller.name!r}")
     run = _run_series(result, {"t": (), "e": (4,), "tau": (4,)})
     t, e = run["t"], run["e"]
     pos = np.linalg.norm(e[:, :3], axis=1)
@@ -251,12 +268,40 @@ def control_summary(result, controller=None, *, settle: float = 1.0, rest: float
     last = t >= t[-1] - rest + 1e-12
     return {
         "controller": getattr(result, "controller", ""),
-        "max_error": float(pos[after].max()),
-        "rms_error": float(np.sqrt(np.mean(pos[after] ** 2))),
-        "max_phi_error": float(np.abs(e[after, 3]).max()),
-        "final_error": float(pos[last].max()),
-        "final_error_z": float(e[last, 2].mean()),
+        "max_position_error": float(pos[after].max()),
+        "rms_position_error": float(np.sqrt(np.mean(pos[after] ** 2))),
+        "max_orientation_error": float(np.abs(e[after, 3]).max()),
+        "final_position_error": float(pos[last].max()),
+        "steady_z_error": float(e[last, 2].mean()),
         "peak_tau": np.abs(run["tau"]).max(axis=0),
         "chattering": chattering(result),
         "step_cost": law_cost(controller, result, repeats) if controller is not None else math.nan,
     }
+
+
+# --------------------------------------------------------------------------------------------------
+# what a helper of one kind of controller reads from a run (refused, with what it needs, for another kind)
+# --------------------------------------------------------------------------------------------------
+def recorded_signals(result, names, who: str) -> np.ndarray:
+    """The signals ``names`` of a run as an (N, len(names)) array; :class:`~scara.ScaraError` naming ``who``
+    needs them, and what the run recorded, when the run (of another kind of controller) has not got them."""
+    signals = getattr(result, "signals", None)
+    missing = [n for n in names if not isinstance(signals, dict) or n not in signals]
+    if missing:
+        have = sorted(signals) if isinstance(signals, dict) else "no signals"
+        raise ScaraError(f"{who} needs a run that records the signals {list(names)}; the run of "
+                         f"{getattr(result, 'controller', type(result).__name__)!r} records {have}")
+    return np.column_stack([np.asarray(signals[n], dtype=float) for n in names])
+
+
+def final_state(result, size: int, who: str) -> np.ndarray:
+    """A copy of the law's state (``size`` numbers) at the end of a run; :class:`~scara.ScaraError` naming
+    ``who`` needs it when the run's controller kept another state."""
+    extra = getattr(result, "extra", None)
+    state = extra.get("final_state") if isinstance(extra, dict) else None
+    got = None if state is None else np.size(state)
+    if got != size:
+        raise ScaraError(f"{who} needs a run whose law keeps a state of {size} numbers; the run of "
+                         f"{getattr(result, 'controller', type(result).__name__)!r} kept "
+                         f"{'none' if got is None else f'{got} numbers'}")
+    return np.array(state, dtype=float)

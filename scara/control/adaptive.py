@@ -16,10 +16,11 @@ import numpy as np
 
 from .._compile import ArrayLayout
 from ..dynamics import DP_ML3, N_PI, PI_NAMES, dynamic_parameters, regressor_kernel
-from ..errors import ScaraError, ShapeError
+from ..errors import ScaraError, ShapeError, is_bool
 from ..params import ScaraParams
 from .._simulate import control_law
-from ._common import BOUND_FIELDS, ERROR_BOUND, BoundedController, positive_gains, torque_code
+from .._simulate.interface import REF_ACC, REF_POS, REF_VEL, WORK_WIDTH
+from ._common import BOUND_FIELDS, ERROR_BOUND, BoundedController, final_state, positive_gains, torque_code
 
 __all__ = ["AdaptiveController", "adaptation_gains"]
 
@@ -37,7 +38,7 @@ def adaptation_gains(K_pi) -> np.ndarray:
                 raise ScaraError(f"K_pi names {key!r}, which is not a parameter; choose from {PI_NAMES}")
             full[PI_NAMES.index(key)] = float(positive_gains(val, f"K_pi[{key!r}]", 1)[0])
         K_pi = full
-    if isinstance(K_pi, (str, bytes, bool, np.bool_)):
+    if isinstance(K_pi, (str, bytes)) or is_bool(K_pi):
         raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got {K_pi!r}")
     try:
         shape = np.shape(K_pi)
@@ -61,49 +62,57 @@ def adaptation_gains(K_pi) -> np.ndarray:
     return inv
 
 
-#: The law's gain array (``K_pi_inv = K_pi^-1``).
+#: The law's arrays: gains (``K_pi_inv = K_pi^-1``), state (the estimate ``pi_hat``), scratch rows (``Y`` is
+#: 4x13, row-major over 13 rows of 4) and signals.
 GAINS = ArrayLayout(("Lambda", 4), ("K_D", 4), ("K_pi_inv", N_PI), *BOUND_FIELDS)
 _G_LAMBDA, _G_KD, _G_KPI, _G_TMAX, _G_EMAX = GAINS.offsets
+STATE = ArrayLayout(("pi_hat", N_PI))
+(_X_PI,) = STATE.offsets
+WORK = ArrayLayout(("Y", N_PI), ("qd_r", 1), ("qdd_r", 1), ("sigma", 1), width=WORK_WIDTH)
+_W_Y, _W_QDR, _W_QDDR, _W_SIGMA = WORK.offsets
+SIGNALS = ArrayLayout(("payload_estimate", 1), ("sigma_norm", 1))
+_S_PAYLOAD, _S_SIGMA = SIGNALS.offsets
 
 
 @control_law
 def adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Slotine-Li step (module docstring). ``state = pi_hat`` (13,), updated in place after ``u`` is formed.
+    """Slotine-Li step (module docstring; the twelve arguments are the engine's fixed
+    :data:`~scara._compile.LAW_SIGNATURE`). ``state = pi_hat`` (13,), updated in place after ``u`` is formed.
 
     ``signals = [payload_estimate, ||sigma||]`` (kg, mixed units), the estimate being the one used at ``t``.
     Returns :data:`OK`, :data:`TORQUE_BOUND` or :data:`ERROR_BOUND`.
     """
-    Y = work[0:13].reshape((4, 13))
-    qd_r = work[13]
-    qdd_r = work[14]
-    sigma = work[15]
+    Y = work[_W_Y:_W_Y + N_PI].reshape((4, N_PI))
+    qd_r = work[_W_QDR]
+    qdd_r = work[_W_QDDR]
+    sigma = work[_W_SIGMA]
     emax = gains[_G_EMAX]
     ns = 0.0
     for i in range(4):
-        qt = ref[i] - q[i]
+        qt = ref[REF_POS + i] - q[i]
         if not abs(qt) <= emax:
             return ERROR_BOUND
         lam = gains[_G_LAMBDA + i]
-        qd_r[i] = ref[4 + i] + lam * qt
-        qdd_r[i] = ref[8 + i] + lam * (ref[4 + i] - qd[i])
+        qd_r[i] = ref[REF_VEL + i] + lam * qt
+        qdd_r[i] = ref[REF_ACC + i] + lam * (ref[REF_VEL + i] - qd[i])
         sigma[i] = qd_r[i] - qd[i]
         ns += sigma[i] * sigma[i]
     regressor_kernel(q, qd, qd_r, qdd_r, model, Y)
-    signals[0] = state[0] - model[DP_ML3]
-    signals[1] = np.sqrt(ns)
+    signals[_S_PAYLOAD] = state[_X_PI] - model[DP_ML3]
+    signals[_S_SIGMA] = np.sqrt(ns)
     for i in range(4):
         u = gains[_G_KD + i] * sigma[i]
-        for j in range(13):
-            u += Y[i, j] * state[j]
+        for j in range(N_PI):
+            u += Y[i, j] * state[_X_PI + j]
         tau[i] = u
     code = torque_code(tau, gains, _G_TMAX)
-    for j in range(13):
+    for j in range(N_PI):
         gj = gains[_G_KPI + j]
         if gj != 0.0:
             s = 0.0
             for i in range(4):
                 s += Y[i, j] * sigma[i]
-            state[j] += dt * gj * s
+            state[_X_PI + j] += dt * gj * s
     return code
 
 
@@ -133,8 +142,10 @@ class AdaptiveController(BoundedController):
     law = staticmethod(adaptive_law)
     name = "adaptive"
     reference_kind = "joint"
-    signal_names = ("payload_estimate", "sigma_norm")
-    work_rows = 16
+    gains_layout = GAINS
+    state_layout = STATE
+    work_layout = WORK
+    signals_layout = SIGNALS
 
     def __init__(self, Lambda=30.0, K_D=(600.0, 300.0, 1000.0, 60.0), K_pi=None, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
@@ -157,8 +168,9 @@ class AdaptiveController(BoundedController):
 
     @staticmethod
     def final_estimate(result) -> np.ndarray:
-        """The parameter estimate ``pi_hat`` (13,) at the end of a run of this controller."""
-        return np.asarray(result.extra["final_state"][:N_PI]).copy()
+        """The parameter estimate ``pi_hat`` (13,) at the end of a run of this controller (a run of another
+        controller, which keeps no such estimate, raises :class:`~scara.ScaraError`)."""
+        return final_state(result, STATE.size, "AdaptiveController.final_estimate")[_X_PI:_X_PI + N_PI]
 
     def __repr__(self):
         return (f"AdaptiveController(Lambda={self.Lambda.tolist()}, K_D={self.K_D.tolist()}, "

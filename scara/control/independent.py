@@ -37,11 +37,10 @@ from __future__ import annotations
 import numpy as np
 
 from .._compile import ArrayLayout
-from ..dynamics import inertia
-from ..errors import ScaraError, ShapeError, UnstableError, as_array
+from ..errors import ScaraError, UnstableError, check_finite_result, check_flag
 from ..params import ScaraParams
 from .._simulate import control_law
-from .._simulate.interface import _finite_result, _flag
+from .._simulate.interface import REF_ACC, REF_POS, REF_VEL
 from ._common import BOUND_FIELDS, ERROR_BOUND, OK, BoundedController, positive_gains, torque_code
 
 __all__ = ["IndependentJointController", "independent_gains", "nominal_inertia", "joint_inertia_spread", "B_BAR",
@@ -59,21 +58,16 @@ OMEGA = 30.0
 # --------------------------------------------------------------------------------------------------
 # design: the nominal model, how far the arm strays from it, the gains
 # --------------------------------------------------------------------------------------------------
-def _configurations(q) -> np.ndarray:
-    q = as_array(q, "q", (4,), allow_batch=True).reshape(-1, 4)
-    if len(q) == 0:
-        raise ShapeError("q holds no configuration: the nominal inertia needs at least one (N >= 1)")
-    return q
-
-
 def nominal_inertia(q, p: ScaraParams | None = None) -> np.ndarray:
     """``B_bar`` (4,): the mean over the configurations ``q`` (N, 4) of the diagonal of ``B(q)`` for the
     parameters ``p`` (default ``ScaraParams()``, no payload): the constant inertia each joint's nominal model
     (eq-ctl-ij-joint) keeps. Over the reference path it gives :data:`B_BAR` (rounded)."""
+    from .robust import _inertias  # noqa: PLC0415 - the same checked sweep over configurations (one payload)
+
     p = ScaraParams.resolve(p)
-    q = _configurations(q)
-    Bs = np.array([inertia(qk, p) for qk in q])
-    return _finite_result(np.diagonal(Bs, axis1=1, axis2=2).mean(axis=0), "the nominal inertia", f"m_L = {p.m_L:g} kg")
+    _, Bs = _inertias(q, None, p)
+    return check_finite_result(np.diagonal(Bs, axis1=1, axis2=2).mean(axis=0), "nominal inertia",
+                               m_L=p.m_L)
 
 
 def joint_inertia_spread(q, payloads=(0.0, 10.0), B_bar=B_BAR, p: ScaraParams | None = None) -> dict:
@@ -117,15 +111,14 @@ def independent_gains(B_bar=B_BAR, omega=OMEGA, F=None, integral: bool = True) -
     B_bar = positive_gains(B_bar, "B_bar")
     omega = positive_gains(omega, "omega")
     F = positive_gains(ScaraParams().F if F is None else F, "F", rule="nonnegative")
-    integral = _flag(integral, "integral")
+    integral = check_flag(integral, "integral")
     n = 3.0 if integral else 2.0
     with np.errstate(over="ignore", invalid="ignore"):
         K_P = (3.0 if integral else 1.0) * omega ** 2 * B_bar
         K_D = n * omega * B_bar - F
         K_I = omega ** 3 * B_bar if integral else np.zeros(4)
-    inputs = f"B_bar = {B_bar.tolist()}, omega = {omega.tolist()}"
     for name, g in (("K_P", K_P), ("K_D", K_D), ("K_I", K_I)):
-        _finite_result(g, name, inputs)
+        check_finite_result(g, name, B_bar=B_bar, omega=omega)
     if np.any(K_D <= 0):
         i = int(np.argmax(K_D <= 0))
         raise ScaraError(f"omega[{i}] = {omega[i]:g} rad/s is too slow for joint {i + 1}: its friction F[{i}] = "
@@ -137,16 +130,20 @@ def independent_gains(B_bar=B_BAR, omega=OMEGA, F=None, integral: bool = True) -
 # --------------------------------------------------------------------------------------------------
 # the law
 # --------------------------------------------------------------------------------------------------
-#: The law's gain array; the flags are 0.0 or 1.0.
+#: The law's arrays: gains (the flags are 0.0 or 1.0), state (the integral ``chi``) and signals (no scratch).
 GAINS = ArrayLayout(("B_bar", 4), ("F", 4), ("K_P", 4), ("K_D", 4), ("K_I", 4), ("feedforward", 1),
                     ("saturation", 1), ("anti_windup", 1), *BOUND_FIELDS)
 (_G_BB, _G_F, _G_KP, _G_KD, _G_KI, _G_FF, _G_SAT, _G_AW, _G_TMAX, _G_EMAX) = GAINS.offsets
+STATE = ArrayLayout(("chi", 4))
+(_X_CHI,) = STATE.offsets
+SIGNALS = ArrayLayout(("integral_action", 4), ("saturated", 1))
+_S_IA, _S_SAT = SIGNALS.offsets
 
 
 @control_law
 def independent_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Independent-joint step (module docstring; the book's eqs. (eq-ctl-ij-law), (eq-ctl-ij-sat)
-    and (eq-ctl-ij-antiwindup)).
+    and (eq-ctl-ij-antiwindup)); its twelve arguments are the engine's fixed :data:`~scara._compile.LAW_SIGNATURE`.
     ``ref = [q_d, qd_d, qdd_d]``; ``state = chi`` (4,), the integral of the joint error, updated after ``u``.
 
     ``signals = [K_I1 chi_1, ..., K_I4 chi_4, n_sat]``: the integral action (N m, N) used at this sample and the
@@ -159,13 +156,13 @@ def independent_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     aw = gains[_G_AW] != 0.0
     n_sat = 0.0
     for i in range(4):
-        qt = ref[i] - q[i]
+        qt = ref[REF_POS + i] - q[i]
         if not abs(qt) <= emax:
             return ERROR_BOUND
-        ia = gains[_G_KI + i] * state[i]
-        signals[i] = ia
-        v = gains[_G_KP + i] * qt + gains[_G_KD + i] * (ref[4 + i] - qd[i]) + ia
-        v += ff * (gains[_G_BB + i] * ref[8 + i] + gains[_G_F + i] * ref[4 + i])
+        ia = gains[_G_KI + i] * state[_X_CHI + i]
+        signals[_S_IA + i] = ia
+        v = gains[_G_KP + i] * qt + gains[_G_KD + i] * (ref[REF_VEL + i] - qd[i]) + ia
+        v += ff * (gains[_G_BB + i] * ref[REF_ACC + i] + gains[_G_F + i] * ref[REF_VEL + i])
         u = v
         clipped = False
         if sat:
@@ -181,8 +178,8 @@ def independent_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
             n_sat += 1.0
         # conditional integration: hold chi_i while the clipped command and the error share their sign
         if gains[_G_KI + i] != 0.0 and not (aw and clipped and qt * v > 0.0):
-            state[i] += dt * qt
-    signals[4] = n_sat
+            state[_X_CHI + i] += dt * qt
+    signals[_S_SAT] = n_sat
     if sat:
         return OK
     return torque_code(tau, gains, _G_TMAX)
@@ -220,16 +217,17 @@ class IndependentJointController(BoundedController):
 
     law = staticmethod(independent_law)
     reference_kind = "joint"
-    signal_names = ("integral_action_1", "integral_action_2", "integral_action_3", "integral_action_4", "saturated")
-    work_rows = 0
+    gains_layout = GAINS
+    state_layout = STATE
+    signals_layout = SIGNALS
 
     def __init__(self, integral: bool = True, omega=OMEGA, B_bar=B_BAR, K_P=None, K_D=None, K_I=None,
-                 feedforward: bool = True, saturation: bool = True, anti_windup: bool = True,
+                 feedforward: bool = True, saturation: bool = True, anti_windup: bool = True, *,
                  model: ScaraParams | None = None, tau_max=None, max_error=None):
-        self.integral = _flag(integral, "integral")
-        self.feedforward = _flag(feedforward, "feedforward")
-        self.saturation = _flag(saturation, "saturation")
-        self.anti_windup = _flag(anti_windup, "anti_windup")
+        self.integral = check_flag(integral, "integral")
+        self.feedforward = check_flag(feedforward, "feedforward")
+        self.saturation = check_flag(saturation, "saturation")
+        self.anti_windup = check_flag(anti_windup, "anti_windup")
         self.model = ScaraParams.resolve(model)
         self.F = np.asarray(self.model.F, dtype=float)
         self.B_bar = positive_gains(B_bar, "B_bar")
@@ -258,7 +256,7 @@ class IndependentJointController(BoundedController):
                           anti_windup=float(self.anti_windup), **self._bounds())
 
     def initial_state(self) -> np.ndarray:
-        return np.zeros(4)
+        return np.zeros(STATE.size)
 
     def motor_gains(self) -> dict:
         """The gains as the motors see them, ``{"K_P": K_P / k_r^2, "K_D": ..., "K_I": ...}`` (N m/rad, N m s/rad,
@@ -286,7 +284,7 @@ class IndependentJointController(BoundedController):
         e = np.zeros(4)
         if not self.integral:
             e[2] = -plant.m3 * plant.g0 / self.K_P[2]
-        return _finite_result(e, "the steady-state error", f"K_P3 = {self.K_P[2]:g}, m3 = {plant.m3:g} kg")
+        return check_finite_result(e, "steady-state error", K_P3=self.K_P[2], m3=plant.m3)
 
     def __repr__(self):
         return (f"IndependentJointController(integral={self.integral}, omega={self.omega.tolist()}, "

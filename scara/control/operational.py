@@ -15,23 +15,32 @@ import numpy as np
 
 from .._compile import ArrayLayout
 from ..dynamics import DP_A1, DP_A2, DP_D0, inverse_dynamics_kernel
-from ..errors import UnstableError
+from ..errors import UnstableError, check_finite_result, check_flag
 from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..params import ScaraParams
 from .._simulate import control_law
-from .._simulate.interface import _finite_result, _flag
+from .._simulate.interface import REF_ACC, REF_POS, REF_VEL, WORK_WIDTH
 from ._common import BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code
 
 __all__ = ["OperationalSpaceController"]
 
-#: The law's gain array.
+#: The law's arrays: gains, state (the integral ``s``), scratch rows (``B_hat`` is the scratch of
+#: :func:`~scara.dynamics.inverse_dynamics_kernel`, which takes the first four rows) and signals.
 GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("K_I", 4), *BOUND_FIELDS)
 _G_KP, _G_KD, _G_KI, _G_TMAX, _G_EMAX = GAINS.offsets
+STATE = ArrayLayout(("s", 4))
+(_X_S,) = STATE.offsets
+WORK = ArrayLayout(("B_hat", 4), ("J_A", 4), ("Jdot_A", 4), ("xt", 1), ("a", 1), ("y", 1), width=WORK_WIDTH)
+_W_B, _W_J, _W_JD, _W_XT, _W_A, _W_Y = WORK.offsets
+assert _W_B == 0, "inverse_dynamics_kernel writes B_hat into the first four rows of work"
+SIGNALS = ArrayLayout(("integral_action", ("x", "y", "z", "phi")))
+(_S_IA,) = SIGNALS.offsets
 
 
 @control_law
 def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Operational-space inverse dynamics step (module docstring). ``ref = [x_d, xd_d, xdd_d]``; ``state`` is
+    """Operational-space inverse dynamics step (module docstring; the twelve arguments are the engine's fixed
+    :data:`~scara._compile.LAW_SIGNATURE`). ``ref = [x_d, xd_d, xdd_d]``; ``state`` is
     the integral ``s`` (4,) of the error, updated after ``u`` is formed.
 
     ``x_e``, ``J_A`` and ``Jdot_A`` are the kernels of :mod:`scara.kinematics` (chapter 1), and ``J_A y = a`` is
@@ -42,11 +51,11 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     ``signals = K_I s`` (4,) (m/s^2, rad/s^2): the integral action. Returns :data:`OK`, :data:`TORQUE_BOUND`,
     :data:`ERROR_BOUND` or :data:`SINGULAR_JACOBIAN`.
     """
-    J = work[4:8]
-    Jd = work[8:12]
-    xt = work[12]
-    a = work[13]
-    y = work[14]
+    J = work[_W_J:_W_J + 4]
+    Jd = work[_W_JD:_W_JD + 4]
+    xt = work[_W_XT]
+    a = work[_W_A]
+    y = work[_W_Y]
     a1 = model[DP_A1]
     a2 = model[DP_A2]
     pose_kernel(q, a1, a2, model[DP_D0], xt)
@@ -54,7 +63,7 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     jacobian_dot_kernel(q, qd, a1, a2, Jd)
     emax = gains[_G_EMAX]
     for i in range(4):
-        xt[i] = ref[i] - xt[i]
+        xt[i] = ref[REF_POS + i] - xt[i]
         if not abs(xt[i]) <= emax:
             return ERROR_BOUND
     for i in range(4):
@@ -63,9 +72,9 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
         for j in range(4):
             v += J[i, j] * qd[j]
             jdq += Jd[i, j] * qd[j]
-        ia = gains[_G_KI + i] * state[i]
-        signals[i] = ia
-        a[i] = ref[8 + i] + gains[_G_KP + i] * xt[i] + gains[_G_KD + i] * (ref[4 + i] - v) + ia - jdq
+        ia = gains[_G_KI + i] * state[_X_S + i]
+        signals[_S_IA + i] = ia
+        a[i] = ref[REF_ACC + i] + gains[_G_KP + i] * xt[i] + gains[_G_KD + i] * (ref[REF_VEL + i] - v) + ia - jdq
     # y = J_A^-1 a
     det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
     if not abs(det) > 1e-12 * a1 * a2:
@@ -74,11 +83,11 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
     y[1] = (J[0, 0] * a[1] - J[1, 0] * a[0]) / det
     y[2] = -a[2]
     y[3] = a[3] - y[0] - y[1]
-    # u = B_hat y + C_hat qd + F qd + g_hat (B_hat goes into work[0:4])
+    # u = B_hat y + C_hat qd + F qd + g_hat (B_hat goes into the first four rows of work, the kernel's scratch)
     inverse_dynamics_kernel(q, qd, y, model, work, tau)
     code = torque_code(tau, gains, _G_TMAX)
     for i in range(4):
-        state[i] += dt * xt[i]
+        state[_X_S + i] += dt * xt[i]
     return code
 
 
@@ -108,12 +117,14 @@ class OperationalSpaceController(BoundedController):
 
     law = staticmethod(operational_law)
     reference_kind = "operational"
-    signal_names = ("integral_action_x", "integral_action_y", "integral_action_z", "integral_action_phi")
-    work_rows = 15
+    gains_layout = GAINS
+    state_layout = STATE
+    work_layout = WORK
+    signals_layout = SIGNALS
 
     def __init__(self, integral: bool = True, K_P=1200.0, K_D=60.0, K_I=8000.0, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
-        self.integral = _flag(integral, "integral")
+        self.integral = check_flag(integral, "integral")
         self.K_P = positive_gains(K_P, "K_P")
         self.K_D = positive_gains(K_D, "K_D")
         if self.integral:
@@ -134,7 +145,7 @@ class OperationalSpaceController(BoundedController):
         return GAINS.pack(K_P=self.K_P, K_D=self.K_D, K_I=self.K_I, **self._bounds())
 
     def initial_state(self) -> np.ndarray:
-        return np.zeros(4)
+        return np.zeros(STATE.size)
 
     def steady_state_error(self, plant: ScaraParams, q=None) -> np.ndarray:
         """Operational error ``x_d - x_e`` (4,) (m, m, m, rad) left at rest by the payload the model misses.
@@ -155,8 +166,7 @@ class OperationalSpaceController(BoundedController):
         y = np.linalg.solve(inertia(q, self.model), gravity(q, plant) - gravity(q, self.model))
         with np.errstate(over="ignore", invalid="ignore"):
             e = jacobian(q, self.model) @ y / self.K_P
-        return _finite_result(e, "the steady-state error",
-                              f"(K_P = {self.K_P.tolist()}, payload m_L = {plant.m_L:g} kg)")
+        return check_finite_result(e, "steady-state error", K_P=self.K_P, m_L=plant.m_L)
 
     def __repr__(self):
         return (f"OperationalSpaceController(integral={self.integral}, K_P={self.K_P.tolist()}, "

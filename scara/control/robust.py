@@ -18,13 +18,18 @@ import math
 
 import numpy as np
 
-from .._compile import ArrayLayout
-from ..dynamics import friction_kernel, gravity_kernel, inertia
-from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_positive
+from .._compile import ArrayLayout, kernel
+from ..dynamics import dynamic_array, friction_kernel, gravity_kernel, inertia, inertia_kernel
+from ..errors import (
+    ScaraError, ShapeError, UnstableError, as_array, check_angles, check_count, check_finite_result, check_positive,
+    is_bool,
+)
 from ..params import ScaraParams
 from .._simulate import control_law
-from .._simulate.interface import _finite_result
-from ._common import BOUND_FIELDS, ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains
+from .._simulate.interface import REF_ACC, REF_POS, REF_VEL, WORK_WIDTH
+from ._common import (
+    BOUND_FIELDS, ERROR_BOUND, OK, TORQUE_BOUND, BoundedController, positive_gains, recorded_signals,
+)
 
 __all__ = ["RobustController", "sliding_weight", "lyapunov_matrix", "sliding_matrix", "inertia_uncertainty",
            "inertia_eigenvalues",
@@ -62,8 +67,7 @@ def sliding_weight(K_P, K_D, Lambda) -> np.ndarray:
                             f"equation (its velocity block 2 (K_D - Lambda)) would not be positive definite")
     with np.errstate(over="ignore", invalid="ignore"):
         P = np.diag(np.concatenate([2.0 * K_P * lam, 2.0 * (K_D - lam)]))
-    return _finite_result(P, "P = diag(2 K_P Lambda, 2 (K_D - Lambda))",
-                          f"K_P = {K_P.tolist()}, K_D = {K_D.tolist()}, Lambda = {lam.tolist()}")
+    return check_finite_result(P, "P = diag(2 K_P Lambda, 2 (K_D - Lambda))", K_P=K_P, K_D=K_D, Lambda=lam)
 
 
 def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
@@ -80,8 +84,7 @@ def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
 
     H = np.block([[np.zeros((4, 4)), np.eye(4)], [-np.diag(K_P), -np.diag(K_D)]])
     Q = solve_continuous_lyapunov(H.T, -P)
-    return _finite_result(0.5 * (Q + Q.T), "the Lyapunov matrix Q",
-                          f"K_P = {K_P.tolist()}, K_D = {K_D.tolist()} and P (largest entry {np.abs(P).max():g})")
+    return check_finite_result(0.5 * (Q + Q.T), "Lyapunov matrix Q", K_P=K_P, K_D=K_D, P=P)
 
 
 def sliding_matrix(K_P, K_D, P) -> np.ndarray:
@@ -90,13 +93,36 @@ def sliding_matrix(K_P, K_D, P) -> np.ndarray:
     return np.ascontiguousarray(Q[4:, :])
 
 
-def _inertias(q, payloads, p):
+#: The most inertia matrices (configurations times payloads) one sweep computes: 1,000,000 of them take 128 MB,
+#: and the book's sweeps need about 1,500.
+MAX_SWEEP = 1_000_000
+#: The most inertia matrices :func:`design_inertia_estimate` optimises over: Nelder-Mead evaluates ``alpha``
+#: over all of them hundreds of times (10,000 matrices take about 40 s, 562 about 2 s); a path sampled every
+#: few hundred samples (the book's 281 configurations) gives the same estimate to three digits.
+MAX_DESIGN = 5_000
+
+
+@kernel
+def _inertia_rows(q, dp, out):
+    """``out[k] = B(q[k])`` (:func:`~scara.dynamics.inertia_kernel`) for every row of ``q`` (N, 4); ``out``
+    (N, 4, 4)."""
+    for k in range(q.shape[0]):
+        inertia_kernel(q[k], dp, out[k])
+
+
+def _inertias(q, payloads, p, limit: int = MAX_SWEEP, why: str = "1,000,000 inertia matrices take 128 MB"):
+    """The checked configurations (N, 4) and the inertia matrices ``B(q)`` (len(payloads) N, 4, 4), payload by
+    payload (``payloads=None``: ``p``'s own); at most ``limit`` matrices (``why`` says where the limit comes
+    from)."""
     p = ScaraParams.resolve(p)
-    q = as_array(q, "q", (4,), allow_batch=True).reshape(-1, 4)
+    q = np.ascontiguousarray(check_angles(as_array(q, "q", (4,), allow_batch=True).reshape(-1, 4)))
     if len(q) == 0:
         raise ShapeError("q holds no configuration: the bounds over the configurations need at least one (N >= 1)")
+    if payloads is None:  # the parameters' own payload
+        return q, check_finite_result(_inertia_sweep(q, [dynamic_array(p)], limit, why), "inertia matrix B(q)",
+                                      m_L=p.m_L)
     try:
-        if isinstance(payloads, (str, bytes, bool, np.bool_)):
+        if isinstance(payloads, (str, bytes)) or is_bool(payloads):
             raise TypeError(payloads)
         pays = np.atleast_1d(np.asarray(payloads, dtype=float))
     except (TypeError, ValueError) as exc:
@@ -105,9 +131,18 @@ def _inertias(q, payloads, p):
         raise ShapeError(f"payloads must be a number or a list of masses (kg), got shape {pays.shape}")
     if np.any(pays < 0) or not np.all(np.isfinite(pays)):
         raise ScaraError(f"payloads = {pays.tolist()} must be finite masses >= 0 kg")
-    plants = [p.with_payload(float(m)) for m in pays]  # one parameter object per payload, not per configuration
-    Bs = np.array([inertia(qk, pm) for pm in plants for qk in q])
-    return q, _finite_result(Bs, "the inertia matrix B(q)", f"payloads = {pays.tolist()} kg")
+    Bs = _inertia_sweep(q, [dynamic_array(p.with_payload(float(m))) for m in pays], limit, why)
+    return q, check_finite_result(Bs, "inertia matrix B(q)", payloads=pays)
+
+
+def _inertia_sweep(q, dps, limit, why):
+    """``B(q)`` (len(dps) N, 4, 4) for every parameter array of ``dps`` (one per payload) and every row of ``q``,
+    after checking there are at most ``limit`` matrices."""
+    check_count(len(q) * len(dps), "len(q) * len(payloads)", 1, limit, "inertia matrices", why)
+    Bs = np.empty((len(dps), len(q), 4, 4))
+    for i, dp in enumerate(dps):  # every configuration in one compiled loop
+        _inertia_rows(q, dp, Bs[i])
+    return Bs.reshape(-1, 4, 4)
 
 
 def inertia_eigenvalues(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = None) -> tuple[float, float]:
@@ -119,7 +154,7 @@ def inertia_eigenvalues(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = 
     Bh = np.diag(positive_gains(B_hat, "B_hat"))
     _, Bs = _inertias(q, payloads, p)
     lam = np.linalg.eigvals(np.linalg.solve(Bs, np.broadcast_to(Bh, Bs.shape))).real
-    _finite_result(lam, "the eigenvalues of B^-1 B_hat", f"B_hat = {np.diag(Bh).tolist()}, payloads = {payloads!r}")
+    check_finite_result(lam, "eigenvalues of B^-1 B_hat", B_hat=np.diag(Bh), payloads=payloads)
     return float(lam.min()), float(lam.max())
 
 
@@ -132,7 +167,7 @@ def inertia_uncertainty(B_hat, q, payloads=(0.0, 10.0), p: ScaraParams | None = 
     Bh = np.diag(positive_gains(B_hat, "B_hat"))
     _, Bs = _inertias(q, payloads, p)
     M = np.eye(4) - np.linalg.solve(Bs, np.broadcast_to(Bh, Bs.shape))
-    _finite_result(M, "I - B^-1 B_hat", f"B_hat = {np.diag(Bh).tolist()}, payloads = {payloads!r}")
+    check_finite_result(M, "I - B^-1 B_hat", B_hat=np.diag(Bh), payloads=payloads)
     return float(np.linalg.norm(M, 2, axis=(1, 2)).max())
 
 
@@ -143,7 +178,8 @@ def design_inertia_estimate(q, payloads=(0.0, 10.0), p: ScaraParams | None = Non
     from scipy.optimize import minimize  # noqa: PLC0415
 
     p = ScaraParams.resolve(p)
-    q, Bs = _inertias(q, payloads, p)
+    q, Bs = _inertias(q, payloads, p, MAX_DESIGN, "Nelder-Mead evaluates alpha over every matrix up to 4000 times; "
+                      "sample the path more sparsely (the book uses every 250th configuration)")
     Binv = np.linalg.inv(Bs)
     eye = np.eye(4)
 
@@ -170,33 +206,38 @@ def rho_bound(alpha: float, qdd_max: float, eta0_max: float) -> float:
     if not alpha < 1:
         raise UnstableError(f"alpha = {alpha:.3g} must be < 1 for the robust term to dominate the uncertainty")
     rho = (alpha * qdd_max + eta0_max) / (1.0 - alpha)
-    return _finite_result(rho, "rho", f"alpha = {alpha:g}, qdd_max = {qdd_max:g}, eta0_max = {eta0_max:g}")
+    return check_finite_result(rho, "rho", alpha=alpha, qdd_max=qdd_max, eta0_max=eta0_max)
 
 
 # --------------------------------------------------------------------------------------------------
 # the law
 # --------------------------------------------------------------------------------------------------
-#: The law's gain array (``Z = D^T Q``, 4x8 row-major).
+#: The law's arrays: gains (``Z = D^T Q``, 4x8 row-major), scratch rows and signals (it keeps no state).
 GAINS = ArrayLayout(("K_P", 4), ("K_D", 4), ("Z", 32), ("rho", 1), ("epsilon", 1), ("B_hat", 4), *BOUND_FIELDS)
 _G_KP, _G_KD, _G_Z, _G_RHO, _G_EPS, _G_BH, _G_TMAX, _G_EMAX = GAINS.offsets
+WORK = ArrayLayout(("qt", 1), ("qt_dot", 1), ("z", 1), ("g_hat", 1), ("friction", 1), width=WORK_WIDTH)
+_W_QT, _W_QTD, _W_Z, _W_G, _W_FR = WORK.offsets
+SIGNALS = ArrayLayout(("z_norm", 1), ("w", 4))
+_S_ZNORM, _S_W = SIGNALS.offsets
 
 
 @control_law
 def robust_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Robust control step (see the module docstring). ``ref = [q_d, qd_d, qdd_d]``.
+    """Robust control step (see the module docstring). ``ref = [q_d, qd_d, qdd_d]``; the twelve arguments are
+    the engine's fixed :data:`~scara._compile.LAW_SIGNATURE`.
 
     ``signals = [||z||, w_1, w_2, w_3, w_4]``. Returns 0, 2 (torque beyond ``tau_max``) or 3 (a joint error
     beyond ``max_error``): :data:`OK`, :data:`TORQUE_BOUND`, :data:`ERROR_BOUND`.
     """
-    qt = work[0]
-    qtd = work[1]
-    z = work[2]
-    g = work[3]
-    fr = work[4]
+    qt = work[_W_QT]
+    qtd = work[_W_QTD]
+    z = work[_W_Z]
+    g = work[_W_G]
+    fr = work[_W_FR]
     emax = gains[_G_EMAX]
     for i in range(4):
-        qt[i] = ref[i] - q[i]
-        qtd[i] = ref[4 + i] - qd[i]
+        qt[i] = ref[REF_POS + i] - q[i]
+        qtd[i] = ref[REF_VEL + i] - qd[i]
         if not abs(qt[i]) <= emax:
             return ERROR_BOUND
     nz2 = 0.0
@@ -212,11 +253,11 @@ def robust_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     scale = rho / nz if nz >= eps else rho / eps
     gravity_kernel(q, model, g)
     friction_kernel(qd, model, fr)
-    signals[0] = nz
+    signals[_S_ZNORM] = nz
     for i in range(4):
         w = scale * z[i]
-        signals[1 + i] = w
-        y = ref[8 + i] + gains[_G_KD + i] * qtd[i] + gains[_G_KP + i] * qt[i] + w
+        signals[_S_W + i] = w
+        y = ref[REF_ACC + i] + gains[_G_KD + i] * qtd[i] + gains[_G_KP + i] * qt[i] + w
         u = gains[_G_BH + i] * y + fr[i] + g[i]
         tau[i] = u
         if not abs(u) <= gains[_G_TMAX + i]:
@@ -256,11 +297,13 @@ class RobustController(BoundedController):
     law = staticmethod(robust_law)
     name = "robust"
     reference_kind = "joint"
-    signal_names = ("z_norm", "w_1", "w_2", "w_3", "w_4")
-    work_rows = 5
+    gains_layout = GAINS
+    state_layout = ArrayLayout()
+    work_layout = WORK
+    signals_layout = SIGNALS
 
     def __init__(self, K_P=900.0, K_D=60.0, rho: float = 20.0, epsilon: float = 0.05, Lambda=30.0, P=None,
-                 B_hat=B_HAT, model: ScaraParams | None = None, tau_max=None, max_error=None):
+                 B_hat=B_HAT, *, model: ScaraParams | None = None, tau_max=None, max_error=None):
         self.K_P = positive_gains(K_P, "K_P")
         self.K_D = positive_gains(K_D, "K_D")
         self.rho = check_positive(rho, "rho")
@@ -302,17 +345,17 @@ class RobustController(BoundedController):
         den = 2.0 - lam_max * kd * dt
         if den <= 0:
             raise UnstableError(f"K_D = {kd:g} alone is past the sampling limit 2 / (lam_max dt) = {2 / (lam_max * dt):g}")
-        return _finite_result(lam_max * self.rho * dt / den, "the boundary-layer bound",
-                              f"lam_max = {lam_max:g}, rho = {self.rho:g}, dt = {dt:g}")
+        return check_finite_result(lam_max * self.rho * dt / den, "boundary-layer bound", lam_max=lam_max,
+                                   rho=self.rho, dt=dt)
 
     def uncertainty(self, result) -> np.ndarray:
         """``eta = y - qdd`` (N, 4) along a run of this controller: the modelling error the robust term had to
         cover (``qdd = y - eta`` by construction), from the recorded state, reference and ``w``."""
+        w = recorded_signals(result, SIGNALS.labels["w"], "RobustController.uncertainty")
         ref = result.reference
-        qt = ref[:, 0:4] - result.q
-        qtd = ref[:, 4:8] - result.qd
-        w = np.column_stack([result.signals[f"w_{i}"] for i in range(1, 5)])
-        y = ref[:, 8:12] + self.K_D * qtd + self.K_P * qt + w
+        qt = ref[:, REF_POS:REF_POS + 4] - result.q
+        qtd = ref[:, REF_VEL:REF_VEL + 4] - result.qd
+        y = ref[:, REF_ACC:REF_ACC + 4] + self.K_D * qtd + self.K_P * qt + w
         return y - result.qdd
 
     def __repr__(self):
