@@ -4,18 +4,19 @@ its data to plotly. The page layout of the figures is :mod:`scara.plots.layout`.
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 import plotly.graph_objects as go
 import plotly.io as pio
 from plotly.io._base_renderers import MimetypeRenderer
 
+from ..errors import check_count
+
 __all__ = [
     "PALETTE", "AXIS_COLOURS", "JOINT_COLOURS", "DASHES", "JOINT_NAMES", "JOINT_UNITS", "LOG_FLOOR", "METHOD_LABELS",
     "METHOD_DASHES", "CONTROLLER_LABELS", "CONTROLLER_DASHES", "run_name", "run_label", "run_colour", "run_dash",
     "thin", "envelope", "f32", "as_list", "slider", "use_book_renderer", "publish",
-    "MAX_POINTS", "MAX_STEPS", "MAX_SWEEP", "MAX_GRID", "MAX_SLIDER_SAMPLES", "MAX_TARGETS", "check_count",
+    "MAX_POINTS", "MAX_STEPS", "MAX_SWEEP", "MAX_GRID", "MAX_SLIDER_SAMPLES", "MAX_TARGETS", "FIGURE_BUDGET",
 ]
 
 # Okabe-Ito colours: distinguishable with the common colour-vision deficiencies and, with the dash styles
@@ -104,7 +105,8 @@ def run_dash(r) -> str:
     return METHOD_DASHES.get(name) or CONTROLLER_DASHES.get(name, "solid")
 
 
-# Upper limits on the work a figure builder may be asked for, checked before any work (:func:`check_count`).
+# Upper limits on the work a figure builder may be asked for, checked before any work
+# (:func:`scara.errors.check_count`).
 # They keep a figure under a few MB of page and about a second of work; each builder's docstring names its own.
 #: samples per curve (a float32 curve of 10 000 points weighs about 0.2 MB in the page)
 MAX_POINTS = 10_000
@@ -118,37 +120,14 @@ MAX_GRID = 301
 MAX_SLIDER_SAMPLES = 100_000
 #: arms, targets or configurations drawn at once in one figure
 MAX_TARGETS = 200
-
-
-def check_count(value, name: str, limit: int, minimum: int = 1, what: str = "") -> int:
-    """``value`` as an ``int`` after checking it is a whole number from ``minimum`` to ``limit``.
-
-    Raises :class:`~scara.errors.ScaraError` naming ``name``, the value asked for and the limit: for a
-    non-integer (``2.5``, ``"10"``, ``True``, a list), a count below ``minimum`` or above ``limit``. Figure
-    builders call it first, so that an oversized request is refused before any work is done.
-
-    >>> check_count(36, "steps", MAX_STEPS)
-    36
-    """
-    from ..errors import ScaraError  # noqa: PLC0415 - the errors module is light; keeps this module's imports flat
-
-    what = f" {what}" if what else ""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise ScaraError(f"{name} = {value!r:.80} must be a whole number{' of' if what else ''}{what} from {minimum} "
-                         f"to {limit}")
-    n = int(value)
-    if n < minimum:
-        raise ScaraError(f"{name} = {n} is too few{what}: the least is {minimum}")
-    if n > limit:
-        raise ScaraError(f"{name} = {n} asks for more{what} than the limit of {limit} (a figure stays under a few "
-                         f"MB and about a second of work)")
-    return n
+#: why the limits above exist (the ``why`` of :func:`~scara.errors.check_count` for a figure's counts)
+FIGURE_BUDGET = "a figure stays under a few MB and about a second of work"
 
 
 def thin(n: int, points: int = 1000) -> np.ndarray:
     """Indices of about ``points`` evenly spaced samples out of ``n`` (first and last included). ``points`` is a
-    whole number from 1 to ``MAX_POINTS`` (:func:`check_count`)."""
-    points = check_count(points, "points", MAX_POINTS, what="samples per curve")
+    whole number from 1 to ``MAX_POINTS`` (:func:`~scara.errors.check_count`)."""
+    points = check_count(points, "points", 1, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if n <= points:
         return np.arange(n)
     return np.unique(np.linspace(0, n - 1, points).round().astype(int))
@@ -157,8 +136,8 @@ def thin(n: int, points: int = 1000) -> np.ndarray:
 def envelope(t, y, points: int = 1000):
     """``(t_k, max |y|)`` over about ``points`` consecutive blocks of the series ``y`` (N,): an upper envelope
     that keeps every peak when a long run is thinned for plotting. Values are floored at 1e-12 for log axes.
-    ``points`` is a whole number from 1 to ``MAX_POINTS`` (:func:`check_count`)."""
-    points = check_count(points, "points", MAX_POINTS, what="samples per curve")
+    ``points`` is a whole number from 1 to ``MAX_POINTS`` (:func:`~scara.errors.check_count`)."""
+    points = check_count(points, "points", 1, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = np.asarray(t)
     y = np.abs(np.asarray(y, dtype=float))
     n = len(t)

@@ -16,13 +16,14 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from .._clik import COMPONENTS, SEED_K, ClikResult, TransposeStability, clik, clik2, second_order_gains
-from ..errors import ScaraError, UnstableError, as_array
+from ..errors import ScaraError, UnstableError, as_array, check_count
 from ._common import (
     AXIS_COLOURS, DASHES, JOINT_COLOURS, JOINT_NAMES, LOG_FLOOR, METHOD_DASHES, METHOD_LABELS, PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
-from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, check_count
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, FIGURE_BUDGET
 from .layout import finish_layout, stacked_axes
+from .panels import FigurePair
 
 __all__ = [
     "METHOD_LABELS",
@@ -43,7 +44,20 @@ __all__ = [
     "gain_steps_figure",
     "relaxed_figure",
     "comparison_rows",
+    "METHOD_CHOICES",
+    "run_method",
+    "clik_panel_series",
+    "clik_panel_title",
+    "clik_panel_figure",
+    "clik_panel_update",
+    "clik_pair",
 ]
+
+#: the live panel's choices of method: its dropdown labels (the legend names, ``METHOD_LABELS``; the
+#: pseudo-inverse's also names its null-space term) and the method each runs (:func:`run_method`)
+METHOD_CHOICES = {METHOD_LABELS[m] + (" + null space" if m == "pseudoinverse" else ""): m for m in METHOD_LABELS}
+#: the roles of :func:`clik_panel_figure`'s traces, in order
+CLIK_PANEL_ROLES = ("position error", "orientation error", "manipulability")
 
 
 #: default gain scales of :func:`gain_slider_figure`: the seed (1), up to and past the transpose's limit (~3.92
@@ -69,7 +83,7 @@ def clik_joints_figure(results, points: int = 800, title: str | None = None, hei
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     rs = _results(results)
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.05, row_heights=[0.4, 0.25, 0.35])
     groups, titles = [], []
@@ -103,7 +117,7 @@ def clik_error_figure(results, points: int = 1000, title: str | None = None, hei
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in rs:
@@ -124,7 +138,7 @@ def error_components_figure(results, points: int = 1000, title: str | None = Non
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     rs = _results(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.65, 0.35])
     groups, titles = [], []
@@ -153,7 +167,7 @@ def manipulability_figure(results, points: int = 1000, title: str | None = None,
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     rs = _results(results)
     fig = go.Figure()
     for r in rs:
@@ -175,7 +189,7 @@ def drift_figure(relaxed: ClikResult, reference: ClikResult | None = None, point
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     r = _results(relaxed)[0]
     if r.method != "pseudoinverse":
         raise ScaraError(f"drift_figure needs a pseudo-inverse run, got method {r.method!r}")
@@ -208,7 +222,7 @@ def transpose_stability_figure(stability: TransposeStability, runs: dict, points
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     st = stability
     dt = 2.0 / st.limit
     idx = thin(len(st.t), points)
@@ -236,7 +250,7 @@ def damping_figure(runs: dict, points: int = 1500, title: str | None = None, hei
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06)
     seen: dict = {}
     for label, r in runs.items():
@@ -263,7 +277,7 @@ def second_order_figure(result: ClikResult, points: int = 1000, title: str | Non
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     r = _results(result)[0]
     if r.qdd is None:
         raise ScaraError("second_order_figure needs a clik2 result (with qdd)")
@@ -329,7 +343,7 @@ def gain_slider_figure(traj, scales=None, methods=("inverse", "transpose"), poin
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work.
     """
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     scales = np.asarray(GAIN_SCALES if scales is None else scales, dtype=float)
     if not 1 <= len(scales) <= 25:
         raise ScaraError(f"gain_slider_figure takes 1 to 25 scales, got {len(scales)}")
@@ -380,12 +394,19 @@ def length_text(metres: float) -> str:
     return f"{f'{metres / size:#.3g}'.rstrip('.')} {unit}"
 
 
-def _run_with_gains(traj, method: str, K):
-    """One CLIK run with the gains ``K`` (4,) of :func:`clik`; the second-order CLIK takes ``K_P = K²``,
-    ``K_D = 2K`` (:func:`scara._clik.second_order_gains`), as the chapter's live panel does."""
+def run_method(traj, method: str, K, p=None, damping: float = 0.0, relaxed=None, k0=None) -> ClikResult:
+    """One CLIK run of ``method`` (a key of ``METHOD_LABELS``) with the gains ``K`` (4,) in 1/s: the inverse
+    (4.4), the transpose (4.8) or the pseudo-inverse with its ``relaxed`` component and null-space gain ``k0``
+    by :func:`scara._clik.clik`, or the second-order law (4.16) by :func:`scara._clik.clik2` with ``K_P = K²``,
+    ``K_D = 2K`` (:func:`scara._clik.second_order_gains`); ``damping`` (m) of the damped least-squares inverse.
+    The one place that maps a method and one gain vector to a run (the chapter's live panel and
+    :func:`gain_steps_figure`)."""
+    K = np.asarray(K, dtype=float)
     if method == "second_order":
-        return clik2(traj, *second_order_gains(np.asarray(K, dtype=float)))
-    return clik(traj, method, np.asarray(K, dtype=float))
+        return clik2(traj, *second_order_gains(K), p=p, damping=damping)
+    if method == "pseudoinverse":
+        return clik(traj, method, K, p=p, damping=damping, relaxed=relaxed, k0=k0)
+    return clik(traj, method, K, p=p, damping=damping)
 
 
 def gain_steps_figure(traj, gains: dict, method: str = "transpose", points: int = 600, title: str | None = None,
@@ -407,10 +428,10 @@ def gain_steps_figure(traj, gains: dict, method: str = "transpose", points: int 
     samples in all (``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work.
     """
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if not isinstance(gains, dict) or not 1 <= len(gains) <= 25:
         raise ScaraError("gain_steps_figure takes a dict {label: K} of 1 to 25 gain vectors")
-    check_count(points * len(gains), "points × steps", MAX_SLIDER_SAMPLES, minimum=2, what="samples in all")
+    check_count(points * len(gains), "points × steps", 2, MAX_SLIDER_SAMPLES, "samples in all", FIGURE_BUDGET)
     if method not in METHOD_LABELS or method == "pseudoinverse":
         raise ScaraError(f"method {method!r}: use 'inverse', 'transpose' or 'second_order'")
     Ks = {str(label): as_array(K, f"gains[{label!r}]", (4,)) for label, K in gains.items()}
@@ -419,7 +440,7 @@ def gain_steps_figure(traj, gains: dict, method: str = "transpose", points: int 
     heads, top = [], 0.0
     for label, K in Ks.items():
         try:
-            r = _run_with_gains(traj, method, K)
+            r = run_method(traj, method, K)
             tt, yy = envelope(r.t, r.position_error, points)
             note = f"largest ‖e_p‖: {length_text(r.summary()['max_position_error'])}"
             top = max(top, float(yy.max()))
@@ -453,7 +474,7 @@ def relaxed_figure(results, reference: ClikResult | None = None, points: int = 1
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole
     number, raises :class:`ScaraError` before any work; every result must be a pseudo-inverse run."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     rs = _results(results)
     if not all(r.method == "pseudoinverse" for r in rs):
         raise ScaraError("relaxed_figure needs pseudo-inverse runs (clik(traj, 'pseudoinverse', relaxed=...))")
@@ -499,6 +520,52 @@ def comparison_rows(results, settle: float = 0.1) -> list[dict]:
             "max |e_φ| (mrad)": s["max_orientation_error"] * 1e3,
             "min w (m²)": s["min_manipulability"],
             "mean w (m²)": s["mean_manipulability"],
-            "run time (ms)": s["run_time"] * 1e3,
+            "run time (ms)": s["elapsed"] * 1e3,
         })
     return rows
+
+
+def clik_panel_series(result, points: int = 800) -> list:
+    """The ``(t, y)`` arrays of :func:`clik_panel_figure`'s traces, in the order of its roles: the envelopes of
+    the position and orientation errors and the thinned manipulability."""
+    r = result
+    series = [envelope(r.t, r.position_error, points), envelope(r.t, r.orientation_error, points)]
+    idx = thin(len(r.t), points)
+    series.append((r.t[idx], r.w[idx]))
+    return series
+
+
+def clik_panel_title(state) -> str:
+    """The live panel's title: the method and the largest position error after 0.1 s (mm)."""
+    return (f"{run_label(state['method'])}: max ‖e_p‖ after 0.1 s = "
+            f"{state['summary']['max_position_error'] * 1e3:.4g} mm")
+
+
+def _clik_panel_traces(state, points):
+    r, colour = state["result"], run_colour(state["method"])
+    return [dict(x=x, y=y, name=run_label(r) if k < 2 else "w", line=dict(color=colour, width=1.5))
+            for k, (x, y) in enumerate(clik_panel_series(r, points))]
+
+
+def clik_panel_figure(state, points: int = 800, height: int = 620) -> go.Figure:
+    """The CLIK panel's figure for ``state`` (``method``, ``result``, ``summary``): the position error (log),
+    the orientation error (log) and the manipulability of the run against time, stacked."""
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
+    for k, trace in enumerate(_clik_panel_traces(state, points)):
+        fig.add_trace(dict(type="scatter", mode="lines", showlegend=k == 0, **trace), row=k + 1, col=1)
+    finish_layout(fig, clik_panel_title(state), height)
+    stacked_axes(fig, ("‖e_p‖ (m)", "|e_φ| (rad)", "w (m²)"), log=(1, 2))
+    return fig
+
+
+def clik_panel_update(state, points: int = 800) -> dict:
+    """What changes in :func:`clik_panel_figure` from one run to another: each trace's data, name and colour
+    (by role, ``CLIK_PANEL_ROLES``) and the title."""
+    return dict(traces=dict(zip(CLIK_PANEL_ROLES, _clik_panel_traces(state, points))), title=clik_panel_title(state))
+
+
+def clik_pair(points: int = 800) -> FigurePair:
+    """The CLIK panel's figure pair (:func:`clik_panel_figure`, :func:`clik_panel_update`)."""
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
+    return FigurePair("clik", lambda state: clik_panel_figure(state, points),
+                      lambda state: clik_panel_update(state, points), CLIK_PANEL_ROLES)

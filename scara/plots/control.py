@@ -17,22 +17,31 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..errors import ScaraError
+from ..errors import ScaraError, check_count
 from ._common import (
     AXIS_COLOURS, CONTROLLER_DASHES, CONTROLLER_LABELS, DASHES, JOINT_COLOURS, JOINT_NAMES, JOINT_UNITS, LOG_FLOOR,
     PALETTE, f32,
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
-from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, check_count
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, FIGURE_BUDGET
 from .layout import finish_layout, stacked_axes
+from .panels import FigurePair
 
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
     "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "saturation_figure",
-    "figure_slider", "tuning_figure", "tuning_series", "tuning_signal", "tuning_title",
+    "figure_slider", "tuning_figure", "tuning_series", "tuning_signal", "tuning_title", "TUNING_CONTROLLERS",
+    "TUNING_ROLES", "tuning_extra", "tuning_update", "tuning_pair",
 ]
+
+#: the live panel's controllers (keys of ``CONTROLLER_LABELS``), in the order of its dropdown
+TUNING_CONTROLLERS = ("robust", "adaptive", "operational", "operational_noint", "independent")
+#: the roles of :func:`tuning_figure`'s traces, in order
+TUNING_ROLES = ("position error", "f3", "τ1", "τ2", "τ4", "signal")
+#: the layout key of :func:`tuning_figure`'s signal axis (the third row; the second has a secondary axis)
+_SIGNAL_AXIS = "yaxis4"
 
 _COMPONENTS = ("x", "y", "z", "φ")
 
@@ -63,7 +72,7 @@ def joint_motion_figure(results, points: int = 350, title: str | None = None, he
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     runs = _as_dict(results)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04, row_heights=[0.3, 0.2, 0.25, 0.25])
     groups, menu, ranges, notes = [], [], [], []
@@ -107,7 +116,7 @@ def operational_error_figure(results, points: int = 600, title: str | None = Non
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     runs = _as_dict(results)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
     groups, menu = [], []
@@ -138,7 +147,7 @@ def error_norm_figure(results, points: int = 1000, title: str | None = None, hei
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     runs = _as_dict(results)
     if groups is not None:
         if not isinstance(groups, dict) or not groups:
@@ -184,7 +193,7 @@ def torque_figure(results, points: int = 500, title: str | None = None, height: 
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), and as many samples in the window; a
     value outside, or not a whole number, raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     runs = _as_dict(results)
     ref = None
     if reference is not None:
@@ -202,7 +211,7 @@ def torque_figure(results, points: int = 500, title: str | None = None, height: 
             idx = thin(len(r.t), points)
         else:
             idx = np.flatnonzero((r.t >= window[0] - 1e-12) & (r.t <= window[1] + 1e-12))
-            check_count(len(idx), f"the window {tuple(window)} s", MAX_POINTS, minimum=2, what="samples per curve")
+            check_count(len(idx), f"the window {tuple(window)} s", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
         tau = r.tau[idx] - (ref[idx] if ref is not None else 0.0)
         for j in range(4):
             fig.add_trace(_line(r.t[idx], tau[:, j], label, run_colour(r), width=1.8, legendgroup=label,
@@ -220,7 +229,7 @@ def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, poin
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if "payload_estimate" not in getattr(result, "signals", {}):
         raise ScaraError("this run carries no payload_estimate: it is not an adaptive run")
     est = result.payload_estimate
@@ -250,7 +259,7 @@ def robust_term_figure(result, epsilon: float, window: tuple | None = None, poin
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = result.t
     sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
     idx = np.flatnonzero(sel)
@@ -291,14 +300,13 @@ def boundary_layer_slider_figure(runs: dict, bound: float, window: tuple = (40.0
     (``MAX_SLIDER_SAMPLES``); more raises :class:`ScaraError` before any work."""
     if not isinstance(runs, dict) or not runs:
         raise ScaraError(f"runs must be a non-empty dict {{epsilon: result}}, got {runs!r:.80}")
-    check_count(len(runs), "len(runs)", MAX_STEPS, what="runs (slider steps)")
+    check_count(len(runs), "len(runs)", 1, MAX_STEPS, "runs (slider steps)", FIGURE_BUDGET)
     notes = dict(notes or {})
     unknown = [e for e in notes if e not in runs]
     if unknown:
         raise ScaraError(f"notes name widths without a run: {unknown}; the runs have {sorted(runs)}")
     in_window = sum(int(np.count_nonzero((r.t >= window[0]) & (r.t <= window[1]))) for r in runs.values())
-    check_count(in_window, f"the window {tuple(window)} s", MAX_SLIDER_SAMPLES, minimum=0,
-                what="samples over all the runs")
+    check_count(in_window, f"the window {tuple(window)} s", 0, MAX_SLIDER_SAMPLES, "samples over all the runs", FIGURE_BUDGET)
     eps_list = sorted(runs)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.1)
     joints = (0, 1, 3)
@@ -339,7 +347,7 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for r in (without_integral, with_integral):
         idx = thin(len(r.t), points)
@@ -372,7 +380,7 @@ def saturation_figure(runs: dict, joint: int = 2, horizon: float = 1.5, limit: f
 
     if not isinstance(runs, dict) or not runs:
         raise ScaraError(f"runs must be a non-empty dict {{label: result}}, got {runs!r:.80}")
-    check_count(len(runs), "len(runs)", 8, what="runs")
+    check_count(len(runs), "len(runs)", 1, 8, "runs")
     joint = check_index(joint, "joint", 4)
     horizon = check_positive(horizon, "horizon")
     signal = f"integral_action_{joint + 1}"
@@ -381,7 +389,7 @@ def saturation_figure(runs: dict, joint: int = 2, horizon: float = 1.5, limit: f
             raise ScaraError(f"the run {label!r} carries no {signal}: it is not a run of the independent-joint "
                              f"controller")
         n = int(np.count_nonzero(r.t <= horizon + 1e-12))
-        check_count(n, f"horizon = {horizon:g} s", MAX_POINTS, minimum=2, what="samples per curve")
+        check_count(n, f"horizon = {horizon:g} s", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     unit = JOINT_UNITS[joint]
     err_unit = "mm" if joint == 2 else "mrad"
     sym = JOINT_NAMES[joint]
@@ -419,12 +427,12 @@ def figure_slider(figures: dict, prefix: str, active: int = 0) -> go.Figure:
     (``MAX_SLIDER_SAMPLES``); more raises :class:`ScaraError` before any work."""
     if not isinstance(figures, dict) or not figures:
         raise ScaraError(f"figures must be a non-empty dict {{label: figure}}, got {figures!r:.80}")
-    check_count(len(figures), "len(figures)", MAX_STEPS, what="figures (slider steps)")
+    check_count(len(figures), "len(figures)", 1, MAX_STEPS, "figures (slider steps)", FIGURE_BUDGET)
     figs = list(figures.values())
     if not all(isinstance(f, go.Figure) for f in figs):
         raise ScaraError("every value of figures must be a plotly Figure")
     samples = sum(len(tr.x) if tr.x is not None else 0 for f in figs for tr in f.data)
-    check_count(samples, "the samples of all the figures", MAX_SLIDER_SAMPLES, minimum=0, what="samples")
+    check_count(samples, "the samples of all the figures", 0, MAX_SLIDER_SAMPLES, "samples", FIGURE_BUDGET)
     out = go.Figure(layout=figs[0].layout)
     counts = []
     for n, f in enumerate(figs):
@@ -495,7 +503,7 @@ def tuning_series(result, points: int = 1200) -> list:
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     tt, yy = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
     idx = thin(len(result.t), points)
     t = result.t[idx]
@@ -524,8 +532,8 @@ def tuning_title(result, summary: dict, extra: str = "") -> str:
     """The title of :func:`tuning_figure`: the run's figures (error after 1 s and at rest, peak quill force,
     chattering) and ``extra``."""
     s = summary
-    head = (f"{run_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_error']:.4g} mm, at rest "
-            f"{1e3 * s['final_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
+    head = (f"{run_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_position_error']:.4g} mm, at rest "
+            f"{1e3 * s['final_position_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
     return head + (f"<br>{extra}" if extra else "")
 
 
@@ -536,7 +544,7 @@ def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, he
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
                         specs=[[{}], [{"secondary_y": True}], [{}]])
     series = tuning_series(result, points)
@@ -556,3 +564,43 @@ def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, he
     fig.update_yaxes(title_text=lab, row=3, col=1)
     fig.update_xaxes(title_text="t (s)", row=3, col=1)
     return fig
+
+
+def tuning_extra(state) -> str:
+    """The second line of the live panel's title for ``state`` (``controller``, ``result``, ``summary``,
+    ``payload``, ``theory``): the loop's time and what the controller's own figures are."""
+    c, res, s = state["controller"], state["result"], state["summary"]
+    extra = f"70 s simulated in {1e3 * res.elapsed:.0f} ms (compiled loop)"
+    if c.name == "robust":
+        extra += f"; ε = {c.epsilon:.3g}, ρ/ε = {c.rho / c.epsilon:.3g} 1/s"
+    elif c.name == "adaptive":
+        extra += f"; final payload estimate {res.payload_estimate[-1]:.4g} kg (true {state['payload']:g})"
+    elif c.name == "independent":
+        extra += f"; ω = {c.omega[0]:.3g} rad/s, largest K_P = {c.K_P.max():.3g}"
+    elif c.name == "operational_noint":
+        extra += f"; e_z at rest {1e3 * s['steady_z_error']:.4g} mm, theory {1e3 * state['theory']:.4g} mm"
+    return extra
+
+
+def tuning_update(state, points: int = 600) -> dict:
+    """What changes in :func:`tuning_figure` from one run to another (of any controller): every trace's data
+    (by role, ``TUNING_ROLES``), the names and colours of the error and of the run's own signal, the signal's
+    axis (log or linear, its title) and the title."""
+    res = state["result"]
+    traces = {role: dict(x=x, y=y) for role, (x, y) in zip(TUNING_ROLES, tuning_series(res, points))}
+    name, colour, log = tuning_signal(res)
+    traces["position error"].update(name=run_label(res), line=dict(color=run_colour(res), width=1.8))
+    traces["signal"].update(name=name, line=dict(color=colour, width=1.5))
+    axis = dict(type="log" if log else "linear", exponentformat="power" if log else None, title=dict(text=name))
+    return dict(traces=traces, title=tuning_title(res, state["summary"], tuning_extra(state)),
+                layout={_SIGNAL_AXIS: axis})
+
+
+def tuning_pair(points: int = 600) -> FigurePair:
+    """The controllers panel's figure pair (:func:`tuning_figure` and :func:`tuning_update`)."""
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
+
+    def build(state):
+        return tuning_figure(state["result"], state["summary"], tuning_extra(state), points=points)
+
+    return FigurePair("tuning", build, lambda state: tuning_update(state, points), TUNING_ROLES)

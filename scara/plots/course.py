@@ -6,8 +6,9 @@ import numpy as np
 import plotly.graph_objects as go
 
 from .._manipulability import manipulability
+from ..errors import check_count
 from ._common import PALETTE, as_list, slider
-from ._common import MAX_POINTS, MAX_STEPS, check_count
+from ._common import MAX_POINTS, MAX_STEPS, FIGURE_BUDGET
 from .kinematics import arm_geometry
 from .layout import finish_layout
 from .trajectory import _waypoint_traces, decimate
@@ -55,8 +56,8 @@ def course_figure(traj, p=None, steps: int = 36, points: int = 1500, height: int
     Limits: ``steps`` from 1 to 121 slider steps (``MAX_STEPS``); ``points`` from 2 to 10 000 samples per curve
     (``MAX_POINTS``); a value outside, or not a whole number, raises :class:`ScaraError` before any work.
     """
-    steps = check_count(steps, "steps", MAX_STEPS, minimum=1, what="slider steps")
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    steps = check_count(steps, "steps", 1, MAX_STEPS, "slider steps", FIGURE_BUDGET)
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     p = ScaraParams.resolve(p)
     k = decimate(traj, points)
     q = traj.joints()

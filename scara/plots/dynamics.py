@@ -10,17 +10,18 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..dynamics import TORQUE_TERMS, inertia
-from ..errors import ScaraError, as_vector
+from ..dynamics import TORQUE_TERMS, inertia, inertia_split
+from ..errors import ScaraError, as_vector, check_count
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, LOG_FLOOR, f32, slider, thin
-from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, MAX_SWEEP, check_count
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, MAX_SWEEP, FIGURE_BUDGET
+from .panels import FigurePair
 from .layout import finish_layout, stacked_axes
 from ..params import ScaraParams
 
 __all__ = [
     "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "torque_share_figure",
     "torque_terms_figure", "payload_torque_figure", "payload_slider_figure", "energy_figure", "window_max",
-    "inertia_figure", "inertia_slider_figure",
+    "inertia_figure", "inertia_slider_figure", "inertia_panel_figure", "inertia_pair",
 ]
 
 #: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
@@ -73,7 +74,7 @@ def torque_terms_figure(t, breakdown: dict, target: int = 1500,
 
     Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
+    target = check_count(target, "target", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = go.Figure()
@@ -100,7 +101,7 @@ def payload_torque_figure(t, torques: dict, target: int = 1500,
 
     Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
+    target = check_count(target, "target", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08, row_heights=[0.55, 0.45])
@@ -126,13 +127,12 @@ def payload_slider_figure(t, torques_by_mass: dict, target: int = 500,
     Limits: ``target`` from 2 to 10 000 samples per curve (``MAX_POINTS``), at most 121 masses (``MAX_STEPS``)
     and at most 100 000 samples per curve in all the steps together (masses × ``target``,
     ``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises :class:`ScaraError` before any work."""
-    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
+    target = check_count(target, "target", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if not isinstance(torques_by_mass, dict) or not torques_by_mass:
         raise ScaraError("torques_by_mass must be a non-empty dict {payload mass (kg): (N, 4) torques}, "
                          f"got {torques_by_mass!r:.80}")
-    check_count(len(torques_by_mass), "len(torques_by_mass)", MAX_STEPS, what="payload masses (slider steps)")
-    check_count(len(torques_by_mass) * target, f"{len(torques_by_mass)} masses × target {target}",
-                MAX_SLIDER_SAMPLES, what="samples per curve in all the slider steps")
+    check_count(len(torques_by_mass), "len(torques_by_mass)", 1, MAX_STEPS, "payload masses (slider steps)", FIGURE_BUDGET)
+    check_count(len(torques_by_mass) * target, f"{len(torques_by_mass)} masses × target {target}", 1, MAX_SLIDER_SAMPLES, "samples per curve in all the slider steps", FIGURE_BUDGET)
     t = np.asarray(t)
     idx = thin(len(t), target)
     masses = list(torques_by_mass)
@@ -179,7 +179,7 @@ def window_max(t, y, size: int):
     sample every ``size`` steps, the window maximum keeps every peak, and a series that alternates from one
     sample to the next (as a residual of Simpson's rule does) draws as one line, not as a band. Values are
     floored at ``LOG_FLOOR`` (1e-12) for a log axis. ``size`` is a whole number from 1 to ``MAX_POINTS``."""
-    size = check_count(size, "size", MAX_POINTS, what="samples per window")
+    size = check_count(size, "size", 1, MAX_POINTS, "samples per window", FIGURE_BUDGET)
     t = np.asarray(t, dtype=float)
     y = np.abs(np.asarray(y, dtype=float))
     if t.shape != y.shape or t.ndim != 1 or not len(t):
@@ -200,8 +200,8 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
 
     Limits: ``target`` from 2 to 10 000 samples per curve and ``window`` from 1 to 10 000 samples
     (``MAX_POINTS``); a value outside, or not a whole number, raises :class:`ScaraError` before any work."""
-    target = check_count(target, "target", MAX_POINTS, minimum=2, what="samples per curve")
-    window = check_count(window, "window", MAX_POINTS, what="samples per residual window")
+    target = check_count(target, "target", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
+    window = check_count(window, "window", 1, MAX_POINTS, "samples per residual window", FIGURE_BUDGET)
     t = np.asarray(t)
     idx = thin(len(t), target)
     fig = make_subplots(rows=2, cols=1, shared_xaxes=True, row_heights=[0.64, 0.36], vertical_spacing=0.1)
@@ -233,13 +233,9 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
 def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     """Left: ``B(q)`` as an annotated heat map; right: each diagonal entry split into links, rotors and
     payload (stacked horizontal bars). Used by the live panel."""
-    p = ScaraParams.resolve(p)
-    bare = p.replace(m_L=0.0)
-    no_rotor = bare.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    parts = inertia_split(q, p)
     B = inertia(q, p)
-    d_links = np.diag(inertia(q, no_rotor))
-    d_rot = np.diag(inertia(q, bare)) - d_links
-    d_pay = np.diag(B) - np.diag(inertia(q, bare))
+    d_links, d_rot, d_pay = (np.diag(parts[k]) for k in ("links", "rotors", "payload"))
     fig = make_subplots(rows=1, cols=2, column_widths=[0.5, 0.5], horizontal_spacing=0.14,
                         subplot_titles=["B(q) (kg m², kg m, kg)", "diagonal of B: what it is made of"])
     # B as a grid of shaded squares (a scatter, not a heat map, so that a live panel can update it in place)
@@ -267,6 +263,18 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     return fig
 
 
+def inertia_panel_figure(state) -> go.Figure:
+    """The inertia panel's figure: :func:`inertia_figure` of ``state["q"]`` for the robot ``state["robot"]``,
+    titled with its payload (kg) and ``theta2`` (degrees)."""
+    return inertia_figure(state["q"], state["robot"],
+                          f"B(q) with a {state['payload']:g} kg payload at θ2 = {state['theta2']:.0f}°")
+
+
+def inertia_pair() -> FigurePair:
+    """The inertia panel's figure pair: :func:`inertia_panel_figure`, redrawn whole (traces by name)."""
+    return FigurePair("inertia", inertia_panel_figure)
+
+
 #: the entries of B drawn by :func:`inertia_slider_figure`: (row, column), legend name, colour, dash
 _INERTIA_CURVES = (((0, 0), "B11", "#0072B2", "solid"), ((0, 1), "B12", "#E69F00", "dash"),
                    ((1, 1), "B22", "#009E73", "dot"))
@@ -287,10 +295,9 @@ def inertia_slider_figure(theta2_deg, masses, p=None, q=(0.0, 0.0, 0.5, 0.0),
     :class:`ScaraError` before any work."""
     theta2_deg = np.asarray(theta2_deg, dtype=float).ravel()
     masses = [float(m) for m in np.asarray(masses, dtype=float).ravel()]
-    check_count(len(theta2_deg), "len(theta2_deg)", MAX_SWEEP, minimum=2, what="elbow angles")
-    check_count(len(masses), "len(masses)", MAX_STEPS, what="payload masses (slider steps)")
-    check_count(len(masses) * len(theta2_deg), f"{len(masses)} masses × {len(theta2_deg)} angles",
-                MAX_SLIDER_SAMPLES, what="samples per curve in all the slider steps")
+    check_count(len(theta2_deg), "len(theta2_deg)", 2, MAX_SWEEP, "elbow angles", FIGURE_BUDGET)
+    check_count(len(masses), "len(masses)", 1, MAX_STEPS, "payload masses (slider steps)", FIGURE_BUDGET)
+    check_count(len(masses) * len(theta2_deg), f"{len(masses)} masses × {len(theta2_deg)} angles", 1, MAX_SLIDER_SAMPLES, "samples per curve in all the slider steps", FIGURE_BUDGET)
     if not 0 <= int(active) < len(masses):
         raise ScaraError(f"active = {active} is not the index of one of the {len(masses)} payload masses")
     active = int(active)

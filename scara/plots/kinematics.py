@@ -12,11 +12,12 @@ import math
 import numpy as np
 import plotly.graph_objects as go
 
-from ..errors import ScaraError, UnreachableError, as_array, as_vector
+from ..errors import ScaraError, UnreachableError, as_array, as_vector, check_count
 from ..kinematics import ikine, jacobian, link_frames, pose
 from ..params import ScaraParams
 from ._common import AXIS_COLOURS, DASHES, JOINT_NAMES, PALETTE, as_list, slider
-from ._common import MAX_POINTS, check_count
+from ._common import MAX_POINTS, FIGURE_BUDGET
+from .panels import FigurePair
 from .layout import _text_width, finish_layout
 # still importable from here, where they lived before scara.plots.layout (the figure rules of tests/ use them)
 
@@ -33,7 +34,7 @@ __all__ = [
     "top_axes",
     "inverse_kinematics_figure",
     "inverse_kinematics_slider_figure",
-    "determinant_figure",
+    "determinant_figure", "arm_pair", "inverse_kinematics_pair",
 ]
 
 #: names of the frames drawn by :func:`arm_figure`: the base frame, then the six of :func:`link_frames`
@@ -499,7 +500,7 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
 
     Limits: ``n`` from 3 to 10 000 samples (``MAX_POINTS``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work."""
-    n = check_count(n, "n", MAX_POINTS, minimum=3, what="samples")
+    n = check_count(n, "n", 3, MAX_POINTS, "samples", FIGURE_BUDGET)
     p = ScaraParams.resolve(p)
     t2 = np.linspace(-180.0, 180.0, n)
     det = np.array([np.linalg.det(jacobian([theta1, math.radians(v), 0.5 * p.d0, 0.0], p)) for v in t2])
@@ -515,3 +516,16 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     fig.update_xaxes(title_text="θ2 (°)", tickvals=list(range(-180, 181, 90)))
     fig.update_yaxes(title_text="det J_A (m²)")
     return fig
+
+
+def arm_pair(p=None, height: int = 480) -> FigurePair:
+    """The direct-kinematics panel's figure: :func:`arm_figure` of the state's ``q`` (redrawn whole, trace by
+    name)."""
+    p = ScaraParams.resolve(p)
+    return FigurePair("arm", lambda state: arm_figure(state["q"], p, height=height))
+
+
+def inverse_kinematics_pair(p=None, height: int = 460) -> FigurePair:
+    """The inverse-kinematics panel's figure: :func:`inverse_kinematics_figure` of the state's ``target``."""
+    p = ScaraParams.resolve(p)
+    return FigurePair("inverse kinematics", lambda state: inverse_kinematics_figure(state["target"], p, height=height))

@@ -17,13 +17,14 @@ import math
 import numpy as np
 import plotly.graph_objects as go
 
-from ..errors import ScaraError, as_array, as_vector, check_number, check_positive
+from ..errors import ScaraError, as_array, as_vector, check_count, check_number, check_positive
 from ..kinematics import ikine
 from .._manipulability import force_ellipsoid, manipulability, singular_radii, velocity_ellipsoid, workspace_map
 from ._common import PALETTE, as_list, slider
-from ._common import MAX_GRID, MAX_POINTS, MAX_SWEEP, MAX_TARGETS, check_count
+from ._common import MAX_GRID, MAX_POINTS, MAX_SWEEP, MAX_TARGETS, FIGURE_BUDGET
 from .kinematics import _circle, top_axes, top_view_arm
 from .layout import finish_layout
+from .panels import FigurePair
 from ..params import ScaraParams
 
 __all__ = [
@@ -37,7 +38,7 @@ __all__ = [
     "duality_figure",
     "ellipse_slider_figure",
     "major_axis_angle",
-    "base_turn_figure",
+    "base_turn_figure", "ellipse_panel_figure", "ellipse_pair",
 ]
 
 #: the five reference configurations of chapter 2 (section *Five reference configurations*), with their labels
@@ -63,7 +64,7 @@ def ellipse_xy(ellipsoid, scale: float = 1.0, n: int = 181) -> np.ndarray:
     Limits: ``n`` from 3 to 10 000 samples (``MAX_POINTS``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work.
     """
-    n = check_count(n, "n", MAX_POINTS, minimum=3, what="samples")
+    n = check_count(n, "n", 3, MAX_POINTS, "samples", FIGURE_BUDGET)
     scale = check_positive(scale, "scale")
     lengths = np.minimum(np.asarray(ellipsoid.lengths, dtype=float) * scale, _CLIP)
     clipped = dataclasses.replace(ellipsoid, lengths=lengths)
@@ -114,8 +115,8 @@ def workspace_points(radii=(0.3, 0.55, 0.8), n_angles: int = 8, height: float = 
     Limits: ``n_angles`` from 1, and at most 200 targets in all (``MAX_TARGETS``, ``len(radii) * n_angles``); more,
     or a count that is not a whole number, raises :class:`ScaraError` before any work."""
     radii = as_array(radii, "radii", (len(np.atleast_1d(radii)),))
-    n_angles = check_count(n_angles, "n_angles", MAX_TARGETS, minimum=1, what="targets per ring")
-    check_count(len(radii) * n_angles, "len(radii) * n_angles", MAX_TARGETS, minimum=1, what="targets")
+    n_angles = check_count(n_angles, "n_angles", 1, MAX_TARGETS, "targets per ring", FIGURE_BUDGET)
+    check_count(len(radii) * n_angles, "len(radii) * n_angles", 1, MAX_TARGETS, "targets", FIGURE_BUDGET)
     pts = []
     for k, r in enumerate(radii):
         for j in range(n_angles):
@@ -191,7 +192,7 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
     p = ScaraParams.resolve(p)
     pts = workspace_points() if points is None else as_array(points, "points", (4,), allow_batch=True)
     pts = np.atleast_2d(pts)
-    check_count(len(pts), "the number of points", MAX_TARGETS, minimum=1, what="targets")
+    check_count(len(pts), "the number of points", 1, MAX_TARGETS, "targets", FIGURE_BUDGET)
     qs = np.atleast_2d(ikine(pts, p, elbow=elbow))
     ax, ay = [], []
     for q in qs:
@@ -244,7 +245,7 @@ def manipulability_map_figure(p=None, n: int = 101, height: int = 520) -> go.Fig
     >>> fig.data[0].type
     'heatmap'
     """
-    n = check_count(n, "n", MAX_GRID, minimum=3, what="grid points per side")
+    n = check_count(n, "n", 3, MAX_GRID, "grid points per side", FIGURE_BUDGET)
     p = ScaraParams.resolve(p)
     xs, ys, W = workspace_map(p, n)
     r_in, r_out = singular_radii(p)
@@ -282,7 +283,7 @@ def duality_figure(q, p=None, n: int = 181, height: int = 440) -> go.Figure:
 
     Limits: ``n`` from 3 to 2001 samples (``MAX_SWEEP``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work."""
-    n = check_count(n, "n", MAX_SWEEP, minimum=3, what="samples")
+    n = check_count(n, "n", 3, MAX_SWEEP, "samples", FIGURE_BUDGET)
     p = ScaraParams.resolve(p)
     q = as_vector(q, "q")
     t2 = np.linspace(-179.0, 179.0, n)
@@ -390,3 +391,22 @@ def base_turn_figure(theta1_deg=None, theta2: float = math.pi / 4, p=None, scale
     finish_layout(fig, title(vals[0], qs[0]), height, sliders=[slider(steps, prefix="θ1 (°) = ")])
     top_axes(fig, p)
     return fig
+
+
+def ellipse_panel_figure(state, p=None, height: int = 520) -> go.Figure:
+    """The ellipses panel's figure: the top view of the arm at ``state["q"]`` with its horizontal velocity and
+    force ellipses (:func:`ellipse_traces`, both drawn ``state["scale"]`` metres per m/s and per N), titled
+    with the angles ``state["theta"]`` (degrees) and ``w = state["w"]``."""
+    p = ScaraParams.resolve(p)
+    sc = state["scale"]
+    fig = go.Figure(ellipse_traces(state["q"], p, sc, sc, axes=True))
+    theta = state["theta"]
+    finish_layout(fig, f"θ1 = {theta[0]:.0f}°, θ2 = {theta[1]:.0f}°: w = {state['w']:.3f} m²", height)
+    top_axes(fig, p)
+    return fig
+
+
+def ellipse_pair(p=None) -> FigurePair:
+    """The ellipses panel's figure pair: :func:`ellipse_panel_figure`, redrawn whole (traces by name)."""
+    p = ScaraParams.resolve(p)
+    return FigurePair("ellipses", lambda state: ellipse_panel_figure(state, p))

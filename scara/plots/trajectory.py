@@ -15,11 +15,12 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..errors import ScaraError, as_array
+from ..errors import ScaraError, as_array, check_count
 from ..trajectory import Trajectory, Trapezoidal, plan_path
 from ..trajectory.joint import KINDS, joint_counterpart, path_deviation
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, as_list, slider
-from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, check_count
+from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, FIGURE_BUDGET
+from .panels import FigurePair
 from .kinematics import top_view_arm
 from .layout import _text_width, finish_layout, stacked_axes
 
@@ -36,7 +37,7 @@ __all__ = [
     "anticipation_slider_figure",
     "joint_profiles_figure",
     "joint_space_series",
-    "joint_space_figure",
+    "joint_space_figure", "EDITOR_TOP_ROLES", "PROFILE_ROLES", "editor_top_figure", "editor_top_update", "editor_profiles_figure", "editor_profiles_update", "editor_pairs",
 ]
 
 _VIA_COLOUR = "#E69F00"
@@ -66,7 +67,7 @@ def decimate(traj: Trajectory, points: int = 2000, lo: float | None = None, hi: 
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = traj.t
     k0 = 0 if lo is None else int(np.searchsorted(t, lo))
     k1 = t.size - 1 if hi is None else int(np.searchsorted(t, hi, side="right")) - 1
@@ -84,7 +85,7 @@ def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = N
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if not isinstance(law, Trapezoidal):
         raise ScaraError(f"expected a Trapezoidal timing law, got {type(law).__name__}")
     T, tc = law.duration, law.blend
@@ -149,7 +150,7 @@ def _box_hits_polyline(box, xy, pad=1.0):
     return bool(np.any(lo <= hi))
 
 
-def _place_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
+def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
     """A ``textposition`` per label such that, at every drawing scale, no two labels overlap and none sits on a
     curve to avoid, if such a choice exists (the least overlap otherwise).
 
@@ -283,14 +284,14 @@ def _project(points, scene):
 
 
 def _waypoint_traces(traj, dims=3, showlegend=True, text=True, views=None):
-    """The stop points and the via points (two marker traces), labelled. ``views`` (see :func:`_place_labels`),
+    """The stop points and the via points (two marker traces), labelled. ``views`` (see :func:`_place_waypoint_labels`),
     built by the caller in the same order as ``traj.waypoints``, decide where each label goes; without them
     every label sits above its point."""
     n = len(traj.labels)
     labels = _merged_labels(traj, range(n))
     positions = ["top center"] * n
     if text and views is not None:
-        positions = _place_labels(views, labels)
+        positions = _place_waypoint_labels(views, labels)
     out = []
     for via, name, symbol, colour in ((False, "stop point", "circle", PALETTE["reference"]),
                                      (True, "via point", "diamond", _VIA_COLOUR)):
@@ -310,7 +311,7 @@ def _waypoint_traces(traj, dims=3, showlegend=True, text=True, views=None):
 
 
 def _top_views(traj, path_xy, arm_xy=None):
-    """The label-placement views of a top view (:func:`_place_labels`) at each of :data:`_TOP_VIEW_SCALES`:
+    """The label-placement views of a top view (:func:`_place_waypoint_labels`) at each of :data:`_TOP_VIEW_SCALES`:
     the waypoints, the arcs to keep clear, the path and the arm."""
     arcs = [traj.x[decimate(traj, 60, traj.segment_start[j], traj.segment_end[j]), :2]
             for j, kind in enumerate(traj.segment_kinds) if kind == "arc"]
@@ -344,7 +345,7 @@ def _scene_box(traj, path_xyz, pad=0.06):
 
 
 def _scene_views(traj, path_xyz, box, aspect, eye):
-    """The label-placement views (:func:`_place_labels`) of the 3-D path figure: the waypoints, the arcs and the
+    """The label-placement views (:func:`_place_waypoint_labels`) of the 3-D path figure: the waypoints, the arcs and the
     path projected on the screen as the figure's camera sees them."""
     scene = dict(lo=box[0], hi=box[1], aspect=aspect, eye=eye)
     pts = _project(traj.waypoints, scene)
@@ -363,7 +364,7 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     k = decimate(traj, points)
     x = traj.x[k]
@@ -394,7 +395,7 @@ def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     k = decimate(traj, points)
     arm = top_view_arm(traj.q0, traj.params)
@@ -411,7 +412,7 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     series = top_view_series(traj, points)
     fig = go.Figure()
@@ -451,7 +452,7 @@ def profiles_series(traj: Trajectory, points: int = 2000) -> list:
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     k = decimate(traj, points)
     t = _r(traj.t[k], 4)
@@ -465,7 +466,7 @@ def profiles_figure(traj: Trajectory, points: int = 2000, title: str | None = No
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     series = profiles_series(traj, points)
     fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04,
@@ -524,7 +525,7 @@ def corner_figure(with_via: Trajectory, without: Trajectory, index: int, margin:
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     _check(with_via), _check(without)
     lab = with_via.labels[index]
     fig = _corner_grid()
@@ -556,15 +557,14 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), and at most 100 000 samples per curve
     in all the steps together (values × ``points``, ``MAX_SLIDER_SAMPLES``); a value outside, or not a whole
     number, raises :class:`ScaraError` before any work (each value re-plans the path)."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     if values is None:
         values = np.arange(0.0, 3.01, 0.25)
     else:
         values = as_array(values, "values", (len(np.atleast_1d(values)),))
     if values.size < 2 or values.size > 25:
         raise ScaraError(f"give between 2 and 25 anticipation values, got {values.size}")
-    check_count(values.size * points, f"{values.size} values × points {points}", MAX_SLIDER_SAMPLES,
-                what="samples per curve in all the slider steps")
+    check_count(values.size * points, f"{values.size} values × points {points}", 1, MAX_SLIDER_SAMPLES, "samples per curve in all the slider steps", FIGURE_BUDGET)
     wps = list(plan["waypoints"])
     lab = wps[index].label or f"p{index}"
     trajs = []
@@ -617,7 +617,7 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     q = traj.joints(p)
     w = traj.manipulability(p)
@@ -654,7 +654,7 @@ def joint_space_series(traj: Trajectory, extra: int = 0, kind: str = "cubic", po
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     jt = joint_counterpart(traj, kind, extra=extra)
     d = path_deviation(jt, traj)
@@ -676,13 +676,13 @@ def joint_space_figure(traj: Trajectory, extras=(0, 1, 3, 7, 15), kind: str = "c
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``), so at most 100 000 samples per curve
     in all the steps together (``MAX_SLIDER_SAMPLES``); a value outside, or not a whole number, raises
     :class:`ScaraError` before any work."""
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     traj = _check(traj)
     if not isinstance(kind, str) or kind not in KINDS:
         raise ScaraError(f"kind = {kind!r} must be one of {sorted(KINDS)}")
     if isinstance(extras, (str, bytes)) or np.ndim(extras) != 1:
         raise ScaraError(f"extras must be a sequence of knot counts (whole numbers 0 to 1000), got {extras!r}")
-    extras = [check_count(e, "extras entry", 1000, minimum=0, what="knots per segment") for e in extras]
+    extras = [check_count(e, "extras entry", 0, 1000, "knots per segment") for e in extras]
     if not 2 <= len(extras) <= 10:
         raise ScaraError(f"give between 2 and 10 values in extras, got {len(extras)}")
     data = [joint_space_series(traj, e, kind, points) for e in extras]
@@ -717,3 +717,67 @@ def joint_space_figure(traj: Trajectory, extras=(0, 1, 3, 7, 15), kind: str = "c
     fig.update_yaxes(title_text="distance (mm)", rangemode="tozero", row=2, col=1)
     fig.update_layout(margin=dict(b=110))
     return fig
+
+
+#: the colour of the waypoint being edited in the waypoint editor
+_EDITING_COLOUR = "#D55E00"
+#: the roles of :func:`editor_top_figure`'s traces, in order (the last one is named after the waypoint edited)
+EDITOR_TOP_ROLES = ("arm", "path", "stop point", "via point", "editing")
+#: the roles of :func:`profiles_figure`'s traces, in order: each component of the position, velocity and
+#: acceleration, then phi and the legend entry of the via bands
+PROFILE_ROLES = tuple(f"{kind} {c}" for kind in ("p", "ṗ", "p̈") for c in _COMP) + ("φ", "via overlap")
+
+
+def _editor_title(traj, k) -> str:
+    return f"The edited path seen from above (editing {traj.labels[k]})"
+
+
+def _editor_marker(traj, k) -> dict:
+    pos = traj.waypoints[k]
+    return dict(x=[float(pos[0])], y=[float(pos[1])], name=f"editing {traj.labels[k]}")
+
+
+def editor_top_figure(state, points: int = 600, height: int = 460) -> go.Figure:
+    """The waypoint editor's top view for ``state`` (``traj``, the plan; ``point``, the index of the waypoint
+    edited): :func:`top_view_figure` with the edited waypoint ringed."""
+    traj, k = state["traj"], state["point"]
+    fig = top_view_figure(traj, points=points, title=_editor_title(traj, k), height=height)
+    fig.add_trace(go.Scatter(mode="markers", marker=dict(size=18, symbol="circle-open", color=_EDITING_COLOUR,
+                                                         line=dict(width=3)), hoverinfo="skip",
+                             **_editor_marker(traj, k)))
+    return fig
+
+
+def editor_top_update(state, points: int = 600) -> dict:
+    """What changes in :func:`editor_top_figure` after an edit: the data of every trace (by role,
+    ``EDITOR_TOP_ROLES``), the ringed waypoint's name and the title."""
+    traj, k = state["traj"], state["point"]
+    top = top_view_series(traj, points=points)
+    arm = top_view_arm(traj.q0, traj.params)
+    traces = dict(zip(EDITOR_TOP_ROLES, (dict(x=arm.x, y=arm.y), dict(x=top["path"][0], y=top["path"][1]),
+                                         top["stop"], top["via"], _editor_marker(traj, k))))
+    return dict(traces=traces, title=_editor_title(traj, k))
+
+
+def editor_profiles_figure(state, points: int = 500, height: int = 620) -> go.Figure:
+    """The waypoint editor's time profiles of the plan ``state["traj"]`` (:func:`profiles_figure`)."""
+    return profiles_figure(state["traj"], points=points, height=height,
+                           title="Its position, velocity and acceleration (orange: via overlaps)")
+
+
+def editor_profiles_update(state, points: int = 500) -> dict:
+    """What changes in :func:`editor_profiles_figure` after an edit: the curves (by role, ``PROFILE_ROLES``)
+    and the segments' bands."""
+    traj = state["traj"]
+    traces = {role: dict(x=x, y=y) for role, (x, y) in zip(PROFILE_ROLES, profiles_series(traj, points=points))}
+    return dict(traces=traces, layout=dict(shapes=segment_shapes(traj)))
+
+
+def editor_pairs(profiles: bool = True, top_points: int = 600, profile_points: int = 500) -> tuple:
+    """The waypoint editor's figure pairs: the top view and, with ``profiles``, the time profiles."""
+    top = FigurePair("top view", lambda s: editor_top_figure(s, top_points), lambda s: editor_top_update(s, top_points),
+                     EDITOR_TOP_ROLES)
+    if not profiles:
+        return (top,)
+    return top, FigurePair("profiles", lambda s: editor_profiles_figure(s, profile_points),
+                           lambda s: editor_profiles_update(s, profile_points), PROFILE_ROLES)

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import plotly.graph_objects as go
 
+from ..errors import check_count
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, slider, thin
-from ._common import MAX_POINTS, check_count
+from ._common import MAX_POINTS, FIGURE_BUDGET
 from .layout import finish_layout
 
 __all__ = ["IMPLEMENTATION_COLOURS", "PER_CALL_TASKS", "RUN_TASKS", "speed_figure", "rotor_coupling_figure"]
@@ -103,7 +104,7 @@ def rotor_coupling_figure(t, coupling_torque, torque, max_points: int = 2000, he
     Limits: ``max_points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole
     number, raises :class:`ScaraError` before any work.
     """
-    max_points = check_count(max_points, "max_points", MAX_POINTS, minimum=2, what="samples per curve")
+    max_points = check_count(max_points, "max_points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     t = np.asarray(t)
     d = np.asarray(coupling_torque)
     tau = np.asarray(torque)

@@ -1,18 +1,17 @@
-"""Shared machinery for live panels: controls, a message line, figures that redraw in place, a table.
+"""The Jupyter front end of the live panels: ipywidgets controls built from a panel's declaration, a message
+line, figures that redraw in place, a table.
 
-A panel is built from two functions of the control values:
+A panel is declared once, as data, in :mod:`scara.plots.panels` (:class:`~scara.plots.panels.Panel`): its
+controls, ``compute(settings) -> state`` (the robotics, in compiled code; it raises
+:class:`~scara.errors.ScaraError` for a setting the package refuses), its figures as builder/update pairs and
+its summary table. :class:`LivePanel` builds the ipywidgets from the controls table (:func:`build_control`).
 
-* ``compute(**values)`` does the robotics (the compiled code) and returns whatever ``draw`` needs; it raises
-  :class:`~scara.errors.ScaraError` for a setting the package refuses;
-* ``draw(state)`` turns that into :class:`PanelView`: the figures (``plotly.graph_objects.Figure``, built by the
-  same :mod:`scara.plots` builders as the book's static figures) and an HTML table.
-
-The figures are shown as plotly ``FigureWidget`` objects created once, when the panel is built. On every change
-the new figures are compared with the previous ones and only what differs (a trace's ``x``/``y``/``z``, a
-title, an axis, the annotations) is sent to the browser in one update message per figure (the message
-``batch_update`` sends, built directly), so that one move redraws each figure once and nothing is ever
-displayed outside the panel. A refused setting shows its message and marks every figure *stale* (its traces
-hidden, its title saying why) until a valid setting is made again.
+The figures are shown as plotly ``FigureWidget`` objects created once, from the builders, when the panel is
+built. On every change each pair's update (trace data and titles keyed by role or name) is applied to the figure
+shown, and only what differs (a trace's ``x``/``y``/``z``, a title, an axis, the annotations) is sent to the
+browser in one update message per figure (the message ``batch_update`` sends, built directly), so that one move
+redraws each figure once and nothing is ever displayed outside the panel. A refused setting shows its message
+and marks every figure *stale* (its traces hidden, its title saying why) until a valid setting is made again.
 """
 from __future__ import annotations
 
@@ -20,11 +19,9 @@ import base64
 import html
 import json
 import math
-import numbers
 import re
 import time
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 
 import ipywidgets as ipw
 import numpy as np
@@ -32,11 +29,12 @@ import plotly.graph_objects as go
 from plotly.basedatatypes import Undefined
 from IPython.display import display
 
-from ..errors import NonFiniteError, ScaraError
+from ..errors import ScaraError
 from ..plots.layout import without_template
+from ..plots.panels import Control, Panel, apply_update, start_value
 
-__all__ = ["LivePanel", "PanelView", "table", "readable", "number", "start_value", "angle_slider", "stroke_slider",
-           "trajectory_arg", "LABEL_STYLE", "STALE_TITLE"]
+__all__ = ["LivePanel", "build_control", "table", "readable", "start_value", "trajectory_arg", "LABEL_STYLE",
+           "STALE_TITLE"]
 
 #: the style of every control: its description shown in full, not cut to a fixed width
 LABEL_STYLE = {"description_width": "initial"}
@@ -51,22 +49,6 @@ _STYLE = """<style>
 .scara-panel .scara-panel-note {color: #8a5a00; padding: 4px 0;}
 .scara-panel table.scara-panel-table td {padding: 2px 10px;}
 </style>"""
-
-
-@dataclass
-class PanelView:
-    """What a panel shows for one valid setting: its figures, an HTML table below them, and notes (plain
-    text) that flag a boundary case the numbers alone would hide.
-
-    A figure is a ``go.Figure`` or, when only its data and title changed since the last one the panel drew
-    (the same method or controller, other numbers), a partial update that skips rebuilding the layout:
-    ``{"data": [dict of trace properties, or None for an unchanged trace, ...], "title": str,
-    "layout": {top-level layout properties}}``.
-    """
-
-    figures: list
-    table: str = ""
-    notes: list = field(default_factory=list)
 
 
 def table(rows) -> str:
@@ -157,19 +139,6 @@ def _widget_safe(value):
     return value
 
 
-def _merge(old: dict, part: dict) -> dict:
-    """The figure ``old`` (plotly JSON) with a partial update applied (see :class:`PanelView`)."""
-    data = [dict(t) for t in old["data"]]
-    for i, d in enumerate(part.get("data") or ()):
-        if d:
-            data[i].update(_widget_safe(d))
-    layout = dict(old["layout"])
-    layout.update(_widget_safe(part.get("layout") or {}))
-    if "title" in part:
-        layout["title"] = dict(layout.get("title") or {}, text=part["title"])
-    return {"data": data, "layout": layout}
-
-
 def _detached(value):
     """``value`` with its dicts copied at every depth, lists of dicts (shapes, annotations) included; lists of
     numbers and arrays, never edited in place, are shared."""
@@ -184,41 +153,46 @@ def _structure(state: dict) -> list:
     return [t.get("type", "scatter") for t in state["data"]]
 
 
+def build_control(c: Control):
+    """The ipywidget of the control ``c``: a ``FloatSlider`` (or ``FloatLogSlider`` on a log scale), a
+    ``Dropdown``, a ``FloatText`` or a ``Checkbox``, labelled ``c.label``, starting at ``c.default``."""
+    common = dict(description=c.label, style=LABEL_STYLE)
+    if c.kind == "dropdown":
+        return ipw.Dropdown(options=list(c.options), value=c.default, **common)
+    if c.kind == "toggle":
+        return ipw.Checkbox(value=c.default, **common)
+    common["continuous_update"] = False
+    if c.kind == "number":
+        return ipw.FloatText(value=c.default, step=c.step, layout=ipw.Layout(width="180px"), **common)
+    if c.readout:
+        common["readout_format"] = c.readout
+    if c.scale == "log":
+        return ipw.FloatLogSlider(value=c.default, base=10, min=math.log10(c.low), max=math.log10(c.high), step=c.step,
+                                  **common)
+    return ipw.FloatSlider(value=c.default, min=c.low, max=c.high, step=c.step, **common)
+
+
 class LivePanel:
     """Controls, a message line, figures redrawn in place and a table (see the module's docstring).
 
     Parameters
     ----------
-    controls : dict
-        Name -> ipywidget; ``compute`` is called with the widgets' values under these names.
-    compute, draw : callables
-        ``compute(**values) -> state`` and ``draw(state) -> PanelView``.
-    title : str
-        A heading shown above the controls.
-    columns : int
-        Controls per row.
-    explain : callable, optional
-        ``explain(exc, values) -> str``: the message shown for a refused setting, in the panel's own units
-        (default: the exception's text, points written as (x, y, z) in m and φ in degrees).
-    react : callable, optional
-        ``react(change)``, called on every change before the panel recomputes, while updates are held: it may
-        set other controls (e.g. load the values of the item a dropdown picked) and the panel still
-        recomputes and redraws once.
+    declaration : Panel
+        The panel (:class:`~scara.plots.panels.Panel`): its controls become ipywidgets (:func:`build_control`),
+        ``declaration.compute`` is called with the controls' values by name, each figure pair draws one figure.
 
     The initial values must be valid: a panel built on a refused setting raises that :class:`ScaraError`.
-    Attributes a test or a notebook may read: ``figures`` (the ``FigureWidget`` objects), ``last_error``
-    (the message shown, or None), ``state`` (the last valid computation), ``timings`` (seconds spent in
-    ``compute``, ``draw`` and sending the update, for the last change), ``redraws`` (figure updates sent so
-    far).
+    Attributes a test or a notebook may read: ``declaration``, ``controls`` (name -> ipywidget), ``figures``
+    (the ``FigureWidget`` objects), ``last_error`` (the message shown, or None), ``state`` (the last valid
+    computation), ``timings`` (seconds spent in ``compute``, ``draw`` and sending the update, for the last
+    change), ``redraws`` (figure updates sent so far). ``compute`` may be replaced (a test counts its calls).
     """
 
-    def __init__(self, controls: dict, compute, draw, title: str = "", columns: int = 2, explain=None,
-                 react=None):
-        self.controls = controls
-        self.react = react
-        self.compute = compute
-        self.draw = draw
-        self.explain = explain or (lambda exc, values: readable(str(exc)))
+    def __init__(self, declaration: Panel):
+        self.declaration = declaration
+        self.controls = {c.name: build_control(c) for c in declaration.controls}
+        self.compute = declaration.compute
+        self.explain = declaration.explain or (lambda exc, values: readable(str(exc)))
         self.message = ipw.HTML()
         self.message.add_class("scara-panel-message")
         self.notes = ipw.HTML()
@@ -231,19 +205,24 @@ class LivePanel:
         self._stale = False
         self._seq = 0
 
-        view = self._view(self.values(), first=True)  # raises for an invalid start: nothing silently clamped
-        self._states = [_widget_safe(f.to_plotly_json()) for f in view.figures]
-        self.figures = [go.FigureWidget(state) for state in self._states]
+        state = self._compute(self.values())  # raises for an invalid start: nothing silently clamped
+        self._states = [_widget_safe(pair.build(state).to_plotly_json()) for pair in declaration.figures]
+        self.timings["draw"] = time.perf_counter() - self._t
+        self.figures = [go.FigureWidget(s) for s in self._states]
         # each figure in a box of its own: the box carries the classes (a FigureWidget's own are not applied)
         self._boxes = [ipw.Box([fw], layout=ipw.Layout(display="block")) for fw in self.figures]
         for box in self._boxes:
             box.add_class("scara-panel-figure")
-        self._show_text(view)
+        self._show_text(state)
 
-        for w in controls.values():
+        for w in self.controls.values():
             w.observe(self._changed, names="value")
-        grid = ipw.GridBox(list(controls.values()),
-                           layout=ipw.Layout(grid_template_columns=f"repeat({columns}, minmax(0, 1fr))"))
+        if declaration.selector is not None:
+            self.controls[declaration.selector].observe(self._grey, names="value")
+            self._grey()
+        grid = ipw.GridBox(list(self.controls.values()),
+                           layout=ipw.Layout(grid_template_columns=f"repeat({declaration.columns}, minmax(0, 1fr))"))
+        title = declaration.title
         head = ipw.HTML(_STYLE + (f"<b>{html.escape(title)}</b>" if title else ""))
         self.widget = ipw.VBox([head, grid, self.message, *self._boxes, self.notes, self.info])
         self.widget.add_class("scara-panel")
@@ -264,47 +243,52 @@ class LivePanel:
         if not self._holding:
             self.update()
 
+    def _grey(self, change=None):
+        """Grey out the controls the selector's choice does not read (their ``applies_to``)."""
+        values = self.values()
+        for c in self.declaration.controls:
+            self.controls[c.name].disabled = not self.declaration.applies(c, values)
+
     def _changed(self, change):
         if self._holding:
             return
-        if self.react is None:
+        react = self.declaration.react
+        name = next(k for k, w in self.controls.items() if w is change["owner"])
+        if react is None:
             self.update()
             return
         with self.hold():
-            self.react(change)
+            for key, value in react(name, self.values()).items():
+                self.controls[key].value = value
 
-    def _view(self, values, first: bool = False) -> PanelView:
+    def _compute(self, values):
         t0 = time.perf_counter()
-        state = self.compute(**values)
-        t1 = time.perf_counter()
-        if first:
-            view = self.draw(state)
-        else:  # the template went with the first figure; only what changes is sent from now on
-            with without_template():
-                view = self.draw(state)
-        self.timings = {"compute": t1 - t0, "draw": time.perf_counter() - t1}
-        self.state = state
-        return view
+        state = self.compute(values)
+        self._t = time.perf_counter()
+        self.timings = {"compute": self._t - t0}
+        return state
 
     def update(self) -> None:
         """Recompute for the controls' values and redraw in place, or show why the setting is refused."""
         values = self.values()
         try:
-            view = self._view(values)
+            state = self._compute(values)
+            # the template went with the first figures; only what changes is sent from now on
+            with without_template():
+                news = [apply_update(old, _widget_safe(pair.updated(state)), pair)
+                        for old, pair in zip(self._states, self.declaration.figures)]
         except ScaraError as exc:
             self._refuse(self.explain(exc, values))
             return
-        if len(view.figures) != len(self.figures):  # a programming error, not a student's
-            raise RuntimeError(f"the panel drew {len(view.figures)} figures, it shows {len(self.figures)}")
+        self.timings["draw"] = time.perf_counter() - self._t
         t0 = time.perf_counter()
-        for k, (fw, fig) in enumerate(zip(self.figures, view.figures)):
-            new = _merge(self._states[k], fig) if isinstance(fig, dict) else _widget_safe(fig.to_plotly_json())
+        for k, (fw, new) in enumerate(zip(self.figures, news)):
             self._sync(k, fw, new)
         self.timings["send"] = time.perf_counter() - t0
         self.last_error = None
         self._stale = False
         self.message.value = ""
-        self._show_text(view)
+        self._show_text(state)
 
     def _values_html(self) -> str:
         """The controls' values, as JSON in a hidden element, with the number of this update and its timings
@@ -314,9 +298,11 @@ class LivePanel:
         state = dict(values=values, seq=self._seq, **{f"{k}_ms": 1e3 * v for k, v in self.timings.items()})
         return f"<span hidden class='scara-panel-values'>{html.escape(json.dumps(state))}</span>"
 
-    def _show_text(self, view: PanelView) -> None:
-        self.info.value = view.table + self._values_html()
-        self.notes.value = "".join(f"<div>⚠ {html.escape(n)}</div>" for n in view.notes)
+    def _show_text(self, state) -> None:
+        self.state = state
+        rows, notes = self.declaration.summary(state) if self.declaration.summary else ((), ())
+        self.info.value = (table(rows) if rows else "") + self._values_html()
+        self.notes.value = "".join(f"<div>⚠ {html.escape(n)}</div>" for n in notes)
 
     def _sync(self, k: int, fw, new: dict) -> None:
         """Send the differences between the figure shown and ``new`` (a plotly JSON dict) in one update."""
@@ -370,29 +356,6 @@ class LivePanel:
         display(self.widget)
 
 
-def number(value, name: str, unit: str = "") -> float:
-    """``value`` as a float, if it is a real number (an ``int``, a ``float``, a numpy scalar), else
-    :class:`ScaraError` naming it: a string, a bool, a list or an array is refused, never converted."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        u = f" (in {unit})" if unit else ""
-        raise ScaraError(f"{name} must be a number{u}, got {type(value).__name__} {value!r:.80}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise NonFiniteError(f"{name} = {v} is not finite")
-    return v
-
-
-def start_value(value, lo: float, hi: float, name: str, unit: str = "", limit: str = "the panel's range") -> float:
-    """A control's starting value, checked against the control's range ``[lo, hi]``: a value outside it, or
-    one that is not a number (:func:`number`), raises :class:`ScaraError` naming the value and the range
-    (``limit`` says what the range is; a panel never silently clamps what it was given)."""
-    v = number(value, name, unit)
-    if not (lo <= v <= hi):
-        u = unit if unit == "°" else (f" {unit}" if unit else "")
-        raise ScaraError(f"{name} = {v:g}{u} is outside {limit} {lo:g} to {hi:g}{u}")
-    return v
-
-
 def trajectory_arg(traj, p):
     """``traj`` (a :class:`~scara.trajectory.Trajectory`), or the 70 s reference of chapter 3 when it is None;
     anything else raises :class:`ScaraError`."""
@@ -404,17 +367,3 @@ def trajectory_arg(traj, p):
         raise ScaraError(f"traj must be a Trajectory (from plan_path or reference_trajectory) or None, "
                          f"got {type(traj).__name__} {traj!r:.80}")
     return traj
-
-
-def stroke_slider(d3: float, p):
-    """A slider over the quill's stroke ``p.d3_min`` to ``p.d3_max`` (m) starting at ``d3``, which must lie in it."""
-    v = start_value(d3, p.d3_min, p.d3_max, "d3", "m", limit="the quill's stroke d3_min to d3_max =")
-    return ipw.FloatSlider(value=v, min=p.d3_min, max=p.d3_max, step=0.01, description="d3 (m)",
-                           continuous_update=False, style=LABEL_STYLE)
-
-
-def angle_slider(value_rad: float, name: str, desc: str):
-    """A slider in degrees over [-180°, 180°] starting at ``value_rad`` (rad), checked by :func:`start_value`."""
-    v = start_value(math.degrees(number(value_rad, name, "rad")), -180.0, 180.0, name, "°")
-    return ipw.FloatSlider(value=v, min=-180.0, max=180.0, step=1.0, description=desc, continuous_update=False,
-                           style=LABEL_STYLE)

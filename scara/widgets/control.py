@@ -5,46 +5,95 @@ from __future__ import annotations
 
 import re
 
-import ipywidgets as ipw
 import numpy as np
 
 from ..control import (
     AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController, control_summary,
 )
-from ..plots._common import MAX_POINTS, check_count, run_colour, run_label
-from ..plots.control import tuning_figure, tuning_series, tuning_signal, tuning_title
-from ._common import LABEL_STYLE, LivePanel, PanelView, readable, start_value, trajectory_arg
+from ..errors import ScaraError, check_count
+from ..plots._common import CONTROLLER_LABELS, FIGURE_BUDGET, MAX_POINTS
+from ..plots.control import TUNING_CONTROLLERS, tuning_pair
+from ..plots.panels import Control, Panel, start_value
+from ._common import LivePanel, readable, trajectory_arg
 from ..params import ScaraParams
 
-__all__ = ["control_panel"]
+__all__ = ["control_panel", "control_declaration", "make_controller"]
 
-_CONTROLLERS = ("robust", "adaptive (Slotine-Li)", "operational ID + integral", "operational ID, no integral",
-                "independent joint PID")
-#: which controls each controller reads (the others are greyed out)
-_USES = {
-    "robust": {"K_P", "K_D", "Lambda", "rho", "epsilon"},
-    "adaptive (Slotine-Li)": {"Lambda", "K_D_scale", "K_pi"},
-    "operational ID + integral": {"K_P", "K_D", "K_I"},
-    "operational ID, no integral": {"K_P", "K_D"},
-    "independent joint PID": {"omega"},
-}
+#: the controller dropdown's choices: the controllers' legend names
+_CONTROLLERS = tuple(CONTROLLER_LABELS[k] for k in TUNING_CONTROLLERS)
+_KEYS = dict(zip(_CONTROLLERS, TUNING_CONTROLLERS))
 
 
-def _log(value, lo, hi, desc, fmt=".3g"):
-    return ipw.FloatLogSlider(value=value, base=10, min=np.log10(lo), max=np.log10(hi), step=0.01,
-                              description=desc, readout_format=fmt, continuous_update=False, style=LABEL_STYLE)
+def _gain(name, label, default, low, high, readout, *uses, unit=""):
+    """A log slider (step 0.01 decade) read by the controllers ``uses`` (keys of ``CONTROLLER_LABELS``)."""
+    return Control(name, "slider", label, default, low, high, 0.01, scale="log", unit=unit, readout=readout,
+                   applies_to=tuple(CONTROLLER_LABELS[k] for k in uses))
 
 
 def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega=30.0):
-    """The controller the panel's settings describe (the panel's own mapping, exposed for tests)."""
-    if controller.startswith("independent"):
+    """The controller the panel's settings describe: ``controller`` is a choice of its dropdown (a legend name
+    of ``CONTROLLER_LABELS``), the other arguments its sliders' values (the panel's own mapping, exposed for
+    tests)."""
+    key = _KEYS.get(controller)
+    if key is None:
+        raise ScaraError(f"controller = {controller!r} is not one of the panel's controllers {_CONTROLLERS}")
+    if key == "independent":
         return IndependentJointController(omega=omega)
-    if controller == "robust":
+    if key == "robust":
         return RobustController(K_P=K_P, K_D=K_D, rho=rho, epsilon=epsilon, Lambda=Lambda)
-    if controller.startswith("adaptive"):
+    if key == "adaptive":
         return AdaptiveController(Lambda=Lambda, K_D=K_D_scale * np.array([600.0, 300.0, 1000.0, 60.0]),
                                   K_pi={"m3": K_pi})
-    return OperationalSpaceController(integral=controller == "operational ID + integral", K_P=K_P, K_D=K_D, K_I=K_I)
+    return OperationalSpaceController(integral=key == "operational", K_P=K_P, K_D=K_D, K_I=K_I)
+
+
+def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 600) -> Panel:
+    """The controllers panel as data (:class:`~scara.plots.panels.Panel`); see :func:`control_panel`."""
+    payload = start_value(payload, 0.0, 10.0, "payload", "kg")
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
+    p = ScaraParams.resolve(p)
+    traj = trajectory_arg(traj, p)
+    from .._clik import clik2  # noqa: PLC0415
+
+    jref = clik2(traj, p=p)
+    controls = (
+        Control("controller", "dropdown", "controller", "robust", options=_CONTROLLERS),
+        Control("payload", "slider", "true payload m_L (kg)", payload, 0.0, 10.0, 0.5, unit="kg"),
+        _gain("K_P", "K_P (1/s²)", 900.0, 10.0, 1e5, ".0f", "robust", "operational", "operational_noint",
+              unit="1/s²"),
+        _gain("K_D", "K_D (1/s)", 60.0, 2.0, 3000.0, ".1f", "robust", "operational", "operational_noint", unit="1/s"),
+        _gain("Lambda", "Λ (1/s)", 30.0, 1.0, 300.0, ".1f", "robust", "adaptive", unit="1/s"),
+        _gain("rho", "ρ (m/s²)", 20.0, 0.1, 200.0, ".3g", "robust", unit="m/s²"),
+        _gain("epsilon", "ε (boundary layer)", 0.05, 1e-3, 1.0, ".3g", "robust"),
+        _gain("K_D_scale", "adaptive K_D (× book)", 1.0, 0.05, 20.0, ".2f", "adaptive"),
+        _gain("K_pi", "K_π (weight of m3)", 0.01, 1e-5, 10.0, ".2e", "adaptive"),
+        _gain("K_I", "K_I (1/s³)", 8000.0, 10.0, 1e6, ".0f", "operational", unit="1/s³"),
+        _gain("omega", "ω, independent joint (rad/s)", 30.0, 1.0, 300.0, ".3g", "independent", unit="rad/s"),
+    )
+
+    def compute(v):
+        c = make_controller(v["controller"], v["K_P"], v["K_D"], v["Lambda"], v["rho"], v["epsilon"],
+                            v["K_D_scale"], v["K_pi"], v["K_I"], v["omega"])
+        plant = p.with_payload(float(v["payload"]))
+        res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
+        theory = c.steady_state_error(plant, res.q[-1])[2] if c.name == "operational_noint" else None
+        return dict(controller=c, plant=plant, payload=v["payload"], result=res, summary=control_summary(res),
+                    theory=theory)
+
+    def summary(st):
+        s = st["summary"]
+        notes = []
+        if s["final_position_error"] > 1e-3:
+            notes.append(f"At rest the tool stays {1e3 * s['final_position_error']:.3g} mm from its target: "
+                         "the payload's weight is not fully compensated.")
+        return (), notes
+
+    def explain(exc, values):
+        # the panel gives every joint or component the same gain: name the gain, not its first entry
+        return readable(re.sub(r"\[0\]", "", str(exc)))
+
+    return Panel("controllers", "Chapter 6: tune a controller on the 70 s run", controls, compute,
+                 (tuning_pair(points),), summary, explain, selector="controller")
 
 
 def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) -> LivePanel:
@@ -53,85 +102,13 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     ``Lambda`` (1/s) of the robust and adaptive laws, ``rho`` (m/s^2) and ``epsilon`` of the robust term, a scale of
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
     lumped mass ``m3``, ``K_I`` (1/s^3), and the true payload (kg) of the plant (the controllers never know it).
-    Each change re-runs the 70 s reference (``traj``, default the reference of chapter 3; the joint reference of
-    ``clik2`` is computed once) and redraws the error, the torques and the controller's own signal. Settings the
-    package refuses (non-positive gains, ``Lambda >= K_D``, an unstable integral, a run that diverges or breaks a
-    bound) are reported in the panel with the time and cause.
+    The sliders a controller does not read are greyed out. Each change re-runs the 70 s reference (``traj``,
+    default the reference of chapter 3; the joint reference of ``clik2`` is computed once) and redraws the
+    error, the torques and the controller's own signal. Settings the package refuses (non-positive gains,
+    ``Lambda >= K_D``, an unstable integral, a run that diverges or breaks a bound) are reported in the panel
+    with the time and cause.
 
     ``payload`` must lie in the slider's range 0 to 10 kg and ``points`` (samples per curve) from 2 to 10 000
     (``scara.plots._common.MAX_POINTS``); outside, or not a number, or ``traj`` not a Trajectory, raises
-    :class:`ScaraError` before any run."""
-    payload = start_value(payload, 0.0, 10.0, "payload", "kg")
-    points = check_count(points, "points", MAX_POINTS, minimum=2, what="samples per curve")
-    p = ScaraParams.resolve(p)
-    traj = trajectory_arg(traj, p)
-    from .._clik import clik2  # noqa: PLC0415
-
-    jref = clik2(traj, p=p)
-    controls = {
-        "controller": ipw.Dropdown(options=_CONTROLLERS, value="robust", description="controller", style=LABEL_STYLE),
-        "payload": ipw.FloatSlider(value=payload, min=0.0, max=10.0,
-                                   step=0.5, description="true payload m_L (kg)", continuous_update=False,
-                                   style=LABEL_STYLE),
-        "K_P": _log(900.0, 10.0, 1e5, "K_P (1/s²)", ".0f"),
-        "K_D": _log(60.0, 2.0, 3000.0, "K_D (1/s)", ".1f"),
-        "Lambda": _log(30.0, 1.0, 300.0, "Λ (1/s)", ".1f"),
-        "rho": _log(20.0, 0.1, 200.0, "ρ (m/s²)", ".3g"),
-        "epsilon": _log(0.05, 1e-3, 1.0, "ε (boundary layer)", ".3g"),
-        "K_D_scale": _log(1.0, 0.05, 20.0, "adaptive K_D (× book)", ".2f"),
-        "K_pi": _log(0.01, 1e-5, 10.0, "K_π (weight of m3)", ".2e"),
-        "K_I": _log(8000.0, 10.0, 1e6, "K_I (1/s³)", ".0f"),
-        "omega": _log(30.0, 1.0, 300.0, "ω, independent joint (rad/s)", ".3g"),
-    }
-
-    def grey(change=None):
-        used = _USES[controls["controller"].value]
-        for key, w in controls.items():
-            if key not in ("controller", "payload"):
-                w.disabled = key not in used
-
-    controls["controller"].observe(grey, names="value")
-    grey()
-
-    def compute(controller, payload, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega):
-        c = make_controller(controller, K_P, K_D, Lambda, rho, epsilon, K_D_scale, K_pi, K_I, omega)
-        plant = p.with_payload(float(payload))
-        res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
-        return dict(controller=c, plant=plant, payload=payload, result=res, summary=control_summary(res))
-
-    drawn = {}  # the first figure's signal axis: later runs only need new data, names, colours and title
-
-    def draw(st):
-        c, res, s, payload = st["controller"], st["result"], st["summary"], st["payload"]
-        extra = f"70 s simulated in {1e3 * res.elapsed:.0f} ms (compiled loop)"
-        if c.name == "robust":
-            extra += f"; ε = {c.epsilon:.3g}, ρ/ε = {c.rho / c.epsilon:.3g} 1/s"
-        elif c.name == "adaptive":
-            extra += f"; final payload estimate {res.payload_estimate[-1]:.4g} kg (true {payload:g})"
-        elif c.name == "independent":
-            extra += f"; ω = {c.omega[0]:.3g} rad/s, largest K_P = {c.K_P.max():.3g}"
-        elif c.name == "operational_noint":
-            theory = c.steady_state_error(st["plant"], res.q[-1])[2]
-            extra += f"; e_z at rest {1e3 * s['final_error_z']:.4g} mm, theory {1e3 * theory:.4g} mm"
-        notes = []
-        if s["final_error"] > 1e-3:
-            notes.append(f"At rest the tool stays {1e3 * s['final_error']:.3g} mm from its target: "
-                         "the payload's weight is not fully compensated.")
-        if drawn:  # the figure's layout is built: send data, names, colours, the signal's axis and the title
-            data = [dict(x=x, y=y) for x, y in tuning_series(res, points)]
-            name, colour, log = tuning_signal(res)
-            data[0].update(name=run_label(res), line=dict(color=run_colour(res), width=1.8))
-            data[5].update(name=name, line=dict(color=colour, width=1.5))
-            axis = dict(drawn["signal_axis"], type="log" if log else "linear", title=dict(text=name))
-            fig = dict(data=data, title=tuning_title(res, s, extra), layout={drawn["signal_axis_key"]: axis})
-        else:
-            fig = tuning_figure(res, s, extra, points=points)
-            key = fig.data[5].yaxis.replace("y", "yaxis")
-            drawn.update(signal_axis_key=key, signal_axis=fig.layout[key].to_plotly_json())
-        return PanelView([fig], "", notes)
-
-    def explain(exc, values):
-        # the panel gives every joint or component the same gain: name the gain, not its first entry
-        return readable(re.sub(r"\[0\]", "", str(exc)))
-
-    return LivePanel(controls, compute, draw, explain=explain, title="Chapter 6: tune a controller on the 70 s run", columns=2)
+    :class:`ScaraError` before any run. Its ``declaration`` is :func:`control_declaration`."""
+    return LivePanel(control_declaration(traj, p, payload, points))
