@@ -14,12 +14,14 @@ that an animation of the 70 s reference stays under about 1.5 MB of page.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..errors import ScaraError
+from ..errors import ScaraError, is_bool
 from ._common import PALETTE, as_list, envelope, run_colour, run_label, run_name, thin
 from .course import course_figure
 from .kinematics import top_axes, top_view_arm
@@ -41,8 +43,7 @@ _BOTTOM = 165  # px under the plot for the buttons and, under them, the slider
 
 
 def _positive(value, name: str, upper: float = 10.0) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-            or not 0 < value <= upper:
+    if is_bool(value) or not isinstance(value, (int, float)) or not math.isfinite(value) or not 0 < value <= upper:
         raise ScaraError(f"{name} = {value!r:.80} must be a time step in seconds, above 0 and at most {upper:g}")
     return float(value)
 
@@ -83,12 +84,14 @@ def frame_indices(t, x, fast: float = 0.1, rest: float = 1.0, dense: tuple | Non
     idx, k, n = [0], 0, t.size
     while True:
         h = spacing[k:k + window].min()
-        k = int(np.searchsorted(t, t[k] + h - 0.5 * dt))
+        # at least one sample on: a run sampled more coarsely than ``fast`` has a frame at every sample
+        k = max(k + 1, int(np.searchsorted(t, t[k] + h - 0.5 * dt)))
         if k >= n - 1:
             break
         idx.append(k)
         if len(idx) > MAX_FRAMES:
-            raise ScaraError(f"fast = {fast:g} s asks for more frames than the limit of {MAX_FRAMES}")
+            raise ScaraError(f"fast = {fast:g} s asks for more than {MAX_FRAMES} frames (the limit) over the "
+                             f"{t[-1] - t[0]:g} s run: raise fast or rest")
     idx.append(n - 1)
     if dense is not None:
         try:
@@ -227,11 +230,25 @@ def _check_runs(runs, what):
     return runs
 
 
-def _runs_animation(runs, p, fast, rest, height, title, cols, extra_rows, extra_titles, add_extra, caption_word,
-                    dense=None):
+@dataclass(frozen=True)
+class _RunPanels:
+    """The page of a runs animation: its ``title``, ``cols`` top-view panels a row, and under them one full-width
+    panel per entry of ``extra_titles``, drawn by ``add_extra(fig, first_row, frame_indices) -> (moving trace
+    ids, per-frame traces)``; each top-view panel's title names the magnification after ``caption_word``."""
+
+    title: str
+    cols: int
+    extra_titles: tuple
+    add_extra: Callable
+    caption_word: str = "error"
+
+
+def _runs_animation(runs, p, panels: _RunPanels, *, fast: float, rest: float, height: int, dense=None) -> go.Figure:
     """The shared body of :func:`clik_animation` and :func:`control_animation`: one top-view panel per run
-    (path, arm, magnified tool) over ``extra_rows`` full-width panels drawn by ``add_extra``."""
+    (path, arm, magnified tool) over the full-width panels of ``panels``; frames by :func:`frame_indices` of the
+    first run's ``x_d`` with ``fast``, ``rest`` and ``dense``."""
     p = ScaraParams.resolve(p)
+    cols, extra_rows, caption_word = panels.cols, len(panels.extra_titles), panels.caption_word
     n = len(runs)
     rows_arm = -(-n // cols)
     r0 = runs[0]
@@ -241,7 +258,7 @@ def _runs_animation(runs, p, fast, rest, height, title, cols, extra_rows, extra_
     # three panels a row leave no room on a phone for the long legend names: the short ones head the panels
     head = run_label if cols < 3 else run_name
     titles = [f"{head(r)}<br>{caption_word} ×{magnification_text(m)}" for r, m in zip(runs, mags)]
-    titles += [""] * (rows_arm * cols - n) + list(extra_titles)
+    titles += [""] * (rows_arm * cols - n) + list(panels.extra_titles)
     specs = [[{} for _ in range(cols)] for _ in range(rows_arm)] + [[{"colspan": cols}] + [None] * (cols - 1)
                                                                    for _ in range(extra_rows)]
     arm_h = 0.62 / rows_arm if extra_rows else 1.0 / rows_arm
@@ -279,12 +296,12 @@ def _runs_animation(runs, p, fast, rest, height, title, cols, extra_rows, extra_
         fig.update_xaxes(range=xr, row=row, col=col, zeroline=False, constrain="domain")
         fig.update_yaxes(range=yr, row=row, col=col, zeroline=False, scaleanchor=f"x{ax_id}", scaleratio=1,
                          title_text="y (m)", title_standoff=2)
-    extra_moving, extra_data = add_extra(fig, rows_arm + 1, idx)
+    extra_moving, extra_data = panels.add_extra(fig, rows_arm + 1, idx)
     moving += extra_moving
     for d, ed in zip(data, extra_data):
         d += ed
     fig.frames = _frames(data, moving)
-    finish_layout(fig, title, height, subplot_titles=True, bottom=_BOTTOM, **play_controls(r0.t[idx]))
+    finish_layout(fig, panels.title, height, subplot_titles=True, bottom=_BOTTOM, **play_controls(r0.t[idx]))
     fig.update_annotations(font_size=12)
     return fig
 
@@ -324,8 +341,8 @@ def clik_animation(runs, p=None, fast: float = 0.1, rest: float = 1.0, height: i
     def extra(fig, row, idx):
         return _error_panel(fig, runs, row, idx)
 
-    fig = _runs_animation(runs, p, fast, rest, height, "CLIK methods on the reference path", 2, 1,
-                          ["x-y tracking error |e|"], extra, "error")
+    panels = _RunPanels("CLIK methods on the reference path", 2, ("x-y tracking error |e|",), extra)
+    fig = _runs_animation(runs, p, panels, fast=fast, rest=rest, height=height)
     fig.update_xaxes(title_text="t (s)", row=-(-len(runs) // 2) + 1, col=1)
     return fig
 
@@ -343,7 +360,7 @@ def control_animation(runs, true_mass: float | None = None, p=None, fast: float 
     :class:`ScaraError` for bad arguments.
     """
     runs = _check_runs(runs, "simulation")
-    if true_mass is not None and (isinstance(true_mass, bool) or not isinstance(true_mass, (int, float))
+    if true_mass is not None and (is_bool(true_mass) or not isinstance(true_mass, (int, float))
                                   or not math.isfinite(true_mass)):
         raise ScaraError(f"true_mass = {true_mass!r:.80} must be a mass in kg")
     est_runs = [r for r in runs if "payload_estimate" in (getattr(r, "signals", None) or {})]
@@ -377,8 +394,9 @@ def control_animation(runs, true_mass: float | None = None, p=None, fast: float 
         fig.update_xaxes(title_text="t (s)", row=row + 1, col=1)
         return moving, data
 
-    return _runs_animation(runs, p, fast, rest, height, "The controllers carrying the unknown payload", len(runs),
-                           2, ["position error |e|", "payload estimate (adaptive)"], extra, "error", dense)
+    panels = _RunPanels("The controllers carrying the unknown payload", len(runs),
+                        ("position error |e|", "payload estimate (adaptive)"), extra)
+    return _runs_animation(runs, p, panels, fast=fast, rest=rest, height=height, dense=dense)
 
 
 def course_animation(traj, p=None, fast: float = 0.1, rest: float = 1.0, height: int = 640) -> go.Figure:

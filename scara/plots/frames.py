@@ -119,6 +119,187 @@ def _candidates(prefer=None, near=(7, 16, 28, 44)):
 
 
 # ------------------------------------------------------------------------------ the figure
+#: (horizontal, vertical, toward-viewer) axes of the base frame in each view, and the sign of the toward-viewer one
+_VIEWS = {"top": (0, 1, 2, +1.0), "side": (0, 2, 1, -1.0)}
+_ROW = {"top": 1, "side": 2}
+_REF = {"top": ("x", "y"), "side": ("x2", "y2")}
+_DIMENSION_GREY = "#555555"
+
+
+class _Drawing:
+    """The two panels being drawn: the figure, the label requests ``ann`` ``[(panel, text, x, y, preferred
+    direction)]``, the segments ``segs`` (data) the labels should avoid, and the arrowheads ``heads`` (drawn after
+    the lines, one trace per panel, colour and size)."""
+
+    def __init__(self, fig: go.Figure):
+        self.fig = fig
+        self.ann = []
+        self.segs = {"top": [], "side": []}
+        self.heads = {}  # (panel, colour, size): [(x, y, angle)]
+
+    def line(self, panel, xs, ys, name, colour, *, width=2, dash="solid", showlegend=False, mode="lines",
+             **kw):
+        """A polyline (``None`` breaks it) added as a trace, its segments kept for the label placement."""
+        self.fig.add_trace(go.Scatter(x=list(xs), y=list(ys), mode=mode, name=name, showlegend=showlegend,
+                                      line=dict(color=colour, width=width, dash=dash), hoverinfo="skip", **kw),
+                           row=_ROW[panel], col=1)
+        for k in range(len(xs) - 1):
+            if None not in (xs[k], xs[k + 1]):
+                self.segs[panel].append(((xs[k], ys[k]), (xs[k + 1], ys[k + 1])))
+
+    def markers(self, panel, points, name, colour, symbol):
+        """Axis-perpendicular markers (a circle with a dot or a cross) at ``points`` (M, 2)."""
+        g = np.array(points)
+        self.fig.add_trace(go.Scatter(x=list(g[:, 0]), y=list(g[:, 1]), mode="markers", name=name, legendgroup=name,
+                                      showlegend=False, marker=dict(symbol=symbol, size=13, color=colour,
+                                                                    line=dict(width=1.5, color=colour)),
+                                      hoverinfo="skip"), row=_ROW[panel], col=1)
+
+    def label(self, panel, text, x, y, prefer=None):
+        """Ask for a label at (x, y) (data), moved off it preferably along ``prefer``."""
+        self.ann.append((panel, text, x, y, prefer))
+
+    def arrowhead(self, panel, tail, tip, colour, size=9):
+        # the "arrow" marker points up at angle 0 and turns clockwise; both axes have the same scale
+        ang = 90.0 - math.degrees(math.atan2(tip[1] - tail[1], tip[0] - tail[0]))
+        self.heads.setdefault((panel, colour, size), []).append((float(tip[0]), float(tip[1]), round(ang, 2)))
+
+    def dimension(self, panel, a, b, text, normal):
+        """A dimension line from a to b (data), arrowheads at both ends, its label on the ``normal`` side."""
+        a, b = np.asarray(a, float), np.asarray(b, float)
+        self.line(panel, [a[0], b[0]], [a[1], b[1]], text, _DIMENSION_GREY, width=1.2)
+        self.arrowhead(panel, b, a, _DIMENSION_GREY, 8)
+        self.arrowhead(panel, a, b, _DIMENSION_GREY, 8)
+        mid = (a + b) / 2
+        self.label(panel, text, mid[0], mid[1], normal)
+
+    def arc(self, panel, centre, a0, a1, r, text, colour="#333333"):
+        """An arc of radius ``r`` about ``centre`` turning from angle ``a0`` to ``a1`` (rad, in the view), with an
+        arrowhead at ``a1`` and its label outside its middle; nothing for an angle under 1e-3 rad."""
+        if abs(a1 - a0) < 1e-3:
+            return
+        t = np.linspace(a0, a1, 40)
+        xs, ys = centre[0] + r * np.cos(t), centre[1] + r * np.sin(t)
+        self.line(panel, list(xs), list(ys), text, colour, width=1.5)
+        self.arrowhead(panel, (xs[-3], ys[-3]), (xs[-1], ys[-1]), colour, 9)
+        mid = 0.5 * (a0 + a1)
+        self.label(panel, text, centre[0] + r * math.cos(mid), centre[1] + r * math.sin(mid),
+                   (math.cos(mid), math.sin(mid)))
+
+    def draw_heads(self):
+        """The arrowheads collected, one marker trace per (panel, colour, size)."""
+        for (panel, colour, size), hs in self.heads.items():
+            h = np.array(hs)
+            self.fig.add_trace(go.Scatter(x=list(h[:, 0]), y=list(h[:, 1]), mode="markers", showlegend=False,
+                                          marker=dict(symbol="arrow", size=size, color=colour, angle=list(h[:, 2])),
+                                          hoverinfo="skip"), row=_ROW[panel], col=1)
+
+
+def _draw_arm(d: _Drawing, o):
+    """The links through the base, frame 0, the elbow, the top of the quill and the gripper, in both views."""
+    arm = np.array([[0.0, 0.0, 0.0], o[1], o[2], o[3], o[6]])
+    for panel, (h, v, n, sgn) in _VIEWS.items():
+        d.line(panel, arm[:, h], arm[:, v], "arm", PALETTE["arm"], width=6, showlegend=panel == "top",
+               mode="lines+markers", marker=dict(size=7, color=PALETTE["arm"]))
+
+
+def _draw_triads(d: _Drawing, frames, L: float):
+    """The axes of every frame projected on each view, ``L`` m long, an axis seen end-on as a dot or a cross."""
+    o = frames[:, :3, 3]
+    for panel, (h, v, n, sgn) in _VIEWS.items():
+        for k in range(3):
+            xs, ys, tails, tips, dots, crosses = [], [], [], [], [], []
+            for f in range(len(frames)):
+                axis = frames[f, :3, k]
+                proj = np.array([axis[h], axis[v]])
+                org = np.array([o[f, h], o[f, v]])
+                if np.hypot(*proj) < 0.3:
+                    (dots if sgn * axis[n] > 0 else crosses).append(org)
+                    continue
+                end = org + L * proj
+                xs += [org[0], end[0], None]
+                ys += [org[1], end[1], None]
+                tails.append(org + 0.7 * L * proj)
+                tips.append(end)
+            name = ("x", "y", "z")[k] + " axes"
+            if xs:
+                d.line(panel, xs, ys, name, AXIS_COLOURS[k], width=2.5, dash=DASHES[k],
+                       showlegend=panel == "top" and k < 2, legendgroup=name)
+            for tail, tp in zip(tails, tips):
+                d.arrowhead(panel, tail, tp, AXIS_COLOURS[k], 10)
+            for group, symbol in ((dots, "circle-open-dot"), (crosses, "circle-x-open")):
+                if group:
+                    d.markers(panel, group, name, AXIS_COLOURS[k], symbol)
+    # a legend entry for the z axes (drawn as circles in the top view)
+    d.fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="z axes", legendgroup="z axes",
+                               line=dict(color=AXIS_COLOURS[2], width=2.5, dash=DASHES[2])), row=1, col=1)
+    # frame labels: one per distinct origin in each view
+    for panel, (h, v, n, sgn) in _VIEWS.items():
+        for text, pt in frame_labels(o[:, [h, v]]):
+            d.label(panel, text, pt[0], pt[1])
+
+
+def _draw_top_marks(d: _Drawing, frames):
+    """The top view's ``a1``, ``a2`` (dimension lines on the side away from the other link) and ``theta1``,
+    ``theta2``, ``theta4`` (arcs from the reference direction to the moved one)."""
+    o = frames[:, :3, 3]
+    elbow, wrist, tip = o[2], o[3], o[6]
+    u1 = elbow[:2] / np.linalg.norm(elbow[:2])
+    d12 = wrist[:2] - elbow[:2]
+    u2 = d12 / np.linalg.norm(d12)
+    n1 = np.array([u1[1], -u1[0]])  # right of link 1
+    n2 = np.array([u2[1], -u2[0]])
+    if n2 @ (-u1) > 0:  # put a2's dimension on the side away from link 1
+        n2 = -n2
+    if n1 @ u2 > 0:
+        n1 = -n1
+    off = 0.09
+    d.dimension("top", n1 * off, elbow[:2] + n1 * off, "a1", n1)
+    d.dimension("top", elbow[:2] + n2 * off, wrist[:2] + n2 * off, "a2", n2)
+    ang1 = math.atan2(u1[1], u1[0])  # = -theta1 (about -z_b)
+    d.arc("top", (0.0, 0.0), 0.0, ang1, 0.2, "θ1")
+    ang2 = math.atan2(u2[1], u2[0])
+    ext = elbow[:2] + 0.24 * u1
+    d.line("top", [elbow[0], ext[0]], [elbow[1], ext[1]], "link 1 extended", "#999999", width=1, dash="dot")
+    d.arc("top", elbow[:2], ang1, ang1 + math.remainder(ang2 - ang1, 2 * math.pi), 0.17, "θ2")
+    x3 = frames[4, :2, 0]
+    x4 = frames[5, :2, 0]
+    a3, a4 = math.atan2(x3[1], x3[0]), math.atan2(x4[1], x4[0])
+    d.arc("top", tip[:2], a3, a3 + math.remainder(a4 - a3, 2 * math.pi), 0.1, "θ4")
+
+
+def _draw_side_marks(d: _Drawing, o, q, p, xr_side):
+    """The side view's ``d0`` and the quill's stroke ``d3`` (dimension lines) and the floor; returns the
+    horizontal range of both views, widened to hold the ``d0`` dimension and to span at least 1.4 m."""
+    side_left = min(0.0, o[:, 0].min())
+    d.dimension("side", (side_left - 0.12, 0.0), (side_left - 0.12, p.d0), "d0", (-1.0, 0.0))
+    tip = o[6]
+    if q[2] > 1e-6:
+        xq = tip[0] + (0.12 if tip[0] >= 0 else -0.12)
+        d.dimension("side", (xq, p.d0), (xq, p.d0 - q[2]), "d3", (1.0 if tip[0] >= 0 else -1.0, 0.0))
+    d.line("side", [xr_side[0], xr_side[1]], [0.0, 0.0], "floor", "#BBBBBB", width=1)
+    xr = [min(xr_side[0], side_left - 0.3), xr_side[1]]
+    span = xr[1] - xr[0]
+    if span < 1.4:  # keep a narrow arm readable: at least 1.4 m across
+        xr = [xr[0] - (1.4 - span) / 2, xr[1] + (1.4 - span) / 2]
+    return xr
+
+
+def _lay_out_views(fig: go.Figure, xr, yr_top, zr_side):
+    """Equal scales on both axes of each view (``scaleanchor``, ``constrain="domain"``); returns the panels'
+    ranges and domains ``{panel: (x range, y range, y domain)}``, also stored in ``layout.meta``."""
+    fig.update_xaxes(range=list(xr), row=1, col=1, constrain="domain", zeroline=False)
+    fig.update_yaxes(range=yr_top, row=1, col=1, title_text="y_b (m)", scaleanchor="x", scaleratio=1,
+                     constrain="domain", zeroline=False)
+    fig.update_xaxes(range=list(xr), row=2, col=1, title_text="x_b (m)", constrain="domain", zeroline=False)
+    fig.update_yaxes(range=zr_side, row=2, col=1, title_text="z_b (m)", scaleanchor="x2", scaleratio=1,
+                     constrain="domain", zeroline=False)
+    panels = {"top": (list(xr), yr_top, tuple(fig.layout.yaxis.domain)),
+              "side": (list(xr), zr_side, tuple(fig.layout.yaxis2.domain))}
+    fig.update_layout(meta=dict(panels=panels))
+    return panels
+
+
 def frames_figure(q=None, p=None, triad: float = 0.18, height: int = _HEIGHT, title: str | None = None) -> go.Figure:
     """Schematic of the DH frames of the arm at ``q`` (default ``[40°, -70°, 0.3 m, 45°]``, the configuration of
     {numref}`fig-ch1-arm`): a top view (x_b-y_b, seen from +z_b) above a side view (x_b-z_b, seen from -y_b).
@@ -144,169 +325,36 @@ def frames_figure(q=None, p=None, triad: float = 0.18, height: int = _HEIGHT, ti
     q = as_vector(list(_DEFAULT_Q) if q is None else q, "q")
     frames = np.concatenate([np.eye(4)[None], link_frames(q, p)])  # b, 0, 1, 2, 3, 4, e (checks q)
     origins = frames[:, :3, 3]
-    L = float(triad)
-    # ---- view geometry: (horizontal, vertical, toward-viewer) unit vectors of the base frame in each view
-    views = {"top": (0, 1, 2, +1.0), "side": (0, 2, 1, -1.0)}
+    # ---- view ranges: the top view holds every origin and the base, the side view the column and the quill
     pts_top = np.vstack([origins[:, :2], [[0.0, 0.0]]])
     pad = 0.26
     xr_top = [min(pts_top[:, 0].min(), 0.0) - pad, max(pts_top[:, 0].max(), 0.0) + pad]
     yr_top = [pts_top[:, 1].min() - pad, pts_top[:, 1].max() + pad]
-    xr_side = list(xr_top)
     zr_side = [-0.07, p.d0 + 0.16]
     ratio_top = (yr_top[1] - yr_top[0])
     ratio_side = (zr_side[1] - zr_side[0])
     split = ratio_top / (ratio_top + ratio_side)
     split = min(max(split, 0.3), 0.6)
-    dom_top = [(1 - _GAP) * (1 - split) + _GAP, 1.0]
-    dom_side = [0.0, (1 - _GAP) * (1 - split)]
     fig = make_subplots(rows=2, cols=1, vertical_spacing=_GAP, row_heights=[split, 1 - split],
                         subplot_titles=("top view, from above", "side view, from −y_b"))
-    ref = {"top": ("x", "y"), "side": ("x2", "y2")}
-    row = {"top": 1, "side": 2}
-    ann = []  # label requests: (panel, text, x, y, preferred direction)
-    segs = {"top": [], "side": []}  # segments (data) that labels should avoid
-
-    def line(panel, xs, ys, name, colour, width=2, dash="solid", showlegend=False, mode="lines", **kw):
-        fig.add_trace(go.Scatter(x=list(xs), y=list(ys), mode=mode, name=name, showlegend=showlegend,
-                                 line=dict(color=colour, width=width, dash=dash), hoverinfo="skip", **kw),
-                      row=row[panel], col=1)
-        for k in range(len(xs) - 1):
-            if None not in (xs[k], xs[k + 1]):
-                segs[panel].append(((xs[k], ys[k]), (xs[k + 1], ys[k + 1])))
-
-    heads = {}  # (panel, colour, size): [(x, y, angle)], drawn after the lines, one trace each
-
-    def arrowhead(panel, tail, tip, colour, size=9):
-        # the "arrow" marker points up at angle 0 and turns clockwise; both axes have the same scale
-        ang = 90.0 - math.degrees(math.atan2(tip[1] - tail[1], tip[0] - tail[0]))
-        heads.setdefault((panel, colour, size), []).append((float(tip[0]), float(tip[1]), round(ang, 2)))
-
-    def dimension(panel, a, b, text, normal):
-        """A dimension line from a to b (data), with extension ticks and its label on the ``normal`` side."""
-        a, b = np.asarray(a, float), np.asarray(b, float)
-        line(panel, [a[0], b[0]], [a[1], b[1]], text, "#555555", width=1.2)
-        arrowhead(panel, b, a, "#555555", 8)
-        arrowhead(panel, a, b, "#555555", 8)
-        mid = (a + b) / 2
-        ann.append((panel, text, mid[0], mid[1], normal))
-
-    # ---- the arm
-    o = origins
-    elbow, wrist, tip = o[2], o[3], o[6]
-    for panel, (h, v, n, sgn) in views.items():
-        arm = np.array([[0.0, 0.0, 0.0], o[1], elbow, wrist, tip])
-        line(panel, arm[:, h], arm[:, v], "arm", PALETTE["arm"], width=6, showlegend=panel == "top",
-             mode="lines+markers", marker=dict(size=7, color=PALETTE["arm"]))
-    # ---- the triads, projected on each view
-    for panel, (h, v, n, sgn) in views.items():
-        for k in range(3):
-            xs, ys, tails, tips, dots, crosses = [], [], [], [], [], []
-            for f in range(len(frames)):
-                axis = frames[f, :3, k]
-                proj = np.array([axis[h], axis[v]])
-                org = np.array([o[f, h], o[f, v]])
-                if np.hypot(*proj) < 0.3:
-                    (dots if sgn * axis[n] > 0 else crosses).append(org)
-                    continue
-                end = org + L * proj
-                xs += [org[0], end[0], None]
-                ys += [org[1], end[1], None]
-                tails.append(org + 0.7 * L * proj)
-                tips.append(end)
-            name = ("x", "y", "z")[k] + " axes"
-            if xs:
-                line(panel, xs, ys, name, AXIS_COLOURS[k], width=2.5, dash=DASHES[k],
-                     showlegend=panel == "top" and k < 2, legendgroup=name)
-            for tail, tp in zip(tails, tips):
-                arrowhead(panel, tail, tp, AXIS_COLOURS[k], 10)
-            for group, symbol in ((dots, "circle-open-dot"), (crosses, "circle-x-open")):
-                if group:
-                    g = np.array(group)
-                    fig.add_trace(go.Scatter(x=list(g[:, 0]), y=list(g[:, 1]), mode="markers", name=name,
-                                             legendgroup=name, showlegend=False,
-                                             marker=dict(symbol=symbol, size=13, color=AXIS_COLOURS[k],
-                                                         line=dict(width=1.5, color=AXIS_COLOURS[k])),
-                                             hoverinfo="skip"), row=row[panel], col=1)
-    # a legend entry for the z axes (drawn as circles in the top view)
-    fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="z axes", legendgroup="z axes",
-                             line=dict(color=AXIS_COLOURS[2], width=2.5, dash=DASHES[2])), row=1, col=1)
-    # ---- frame labels: one per distinct origin in each view
-    for panel, (h, v, n, sgn) in views.items():
-        for text, pt in frame_labels(o[:, [h, v]]):
-            ann.append((panel, text, pt[0], pt[1], None))
-    # ---- top view: a1, a2, theta1, theta2, theta4
-    u1 = elbow[:2] / np.linalg.norm(elbow[:2])
-    d12 = wrist[:2] - elbow[:2]
-    u2 = d12 / np.linalg.norm(d12)
-    n1 = np.array([u1[1], -u1[0]])  # right of link 1
-    n2 = np.array([u2[1], -u2[0]])
-    if n2 @ (-u1) > 0:  # put a2's dimension on the side away from link 1
-        n2 = -n2
-    if n1 @ u2 > 0:
-        n1 = -n1
-    off = 0.09
-    dimension("top", n1 * off, elbow[:2] + n1 * off, "a1", n1)
-    dimension("top", elbow[:2] + n2 * off, wrist[:2] + n2 * off, "a2", n2)
-
-    def arc(panel, centre, a0, a1_, r, text, colour="#333333"):
-        if abs(a1_ - a0) < 1e-3:
-            return
-        t = np.linspace(a0, a1_, 40)
-        xs, ys = centre[0] + r * np.cos(t), centre[1] + r * np.sin(t)
-        line(panel, list(xs), list(ys), text, colour, width=1.5)
-        arrowhead(panel, (xs[-3], ys[-3]), (xs[-1], ys[-1]), colour, 9)
-        mid = 0.5 * (a0 + a1_)
-        ann.append((panel, text, centre[0] + r * math.cos(mid), centre[1] + r * math.sin(mid),
-                    (math.cos(mid), math.sin(mid))))
-
-    ang1 = math.atan2(u1[1], u1[0])  # = -theta1 (about -z_b)
-    arc("top", (0.0, 0.0), 0.0, ang1, 0.2, "θ1")
-    ang2 = math.atan2(u2[1], u2[0])
-    ext = elbow[:2] + 0.24 * u1
-    line("top", [elbow[0], ext[0]], [elbow[1], ext[1]], "link 1 extended", "#999999", width=1, dash="dot")
-    arc("top", elbow[:2], ang1, ang1 + math.remainder(ang2 - ang1, 2 * math.pi), 0.17, "θ2")
-    x3 = frames[4, :2, 0]
-    x4 = frames[5, :2, 0]
-    a3, a4 = math.atan2(x3[1], x3[0]), math.atan2(x4[1], x4[0])
-    arc("top", tip[:2], a3, a3 + math.remainder(a4 - a3, 2 * math.pi), 0.1, "θ4")
-    # ---- side view: d0 and d3
-    side_left = min(0.0, o[:, 0].min())
-    dimension("side", (side_left - 0.12, 0.0), (side_left - 0.12, p.d0), "d0", (-1.0, 0.0))
-    if q[2] > 1e-6:
-        xq = tip[0] + (0.12 if tip[0] >= 0 else -0.12)
-        dimension("side", (xq, p.d0), (xq, p.d0 - q[2]), "d3", (1.0 if tip[0] >= 0 else -1.0, 0.0))
-    line("side", [xr_side[0], xr_side[1]], [0.0, 0.0], "floor", "#BBBBBB", width=1)
-    xr_side[0] = min(xr_side[0], side_left - 0.3)
-    xr_top[0] = xr_side[0]
-    span = xr_side[1] - xr_side[0]
-    if span < 1.4:  # keep a narrow arm readable: at least 1.4 m across
-        xr_side = [xr_side[0] - (1.4 - span) / 2, xr_side[1] + (1.4 - span) / 2]
-        xr_top = list(xr_side)
-    for (panel, colour, size), hs in heads.items():
-        h = np.array(hs)
-        fig.add_trace(go.Scatter(x=list(h[:, 0]), y=list(h[:, 1]), mode="markers", showlegend=False,
-                                 marker=dict(symbol="arrow", size=size, color=colour, angle=list(h[:, 2])),
-                                 hoverinfo="skip"), row=row[panel], col=1)
+    d = _Drawing(fig)
+    _draw_arm(d, origins)
+    _draw_triads(d, frames, float(triad))
+    _draw_top_marks(d, frames)
+    xr = _draw_side_marks(d, origins, q, p, xr_top)
+    d.draw_heads()
     # ---- layout, then the labels placed at the page widths checked
     t1, t2, t4 = (round(math.degrees(v), 1) + 0.0 for v in (q[0], q[1], q[3]))
     head = title or (f"DH frames at θ1 = {t1:g}°, θ2 = {t2:g}°,<br>d3 = {q[2]:.2f} m, θ4 = {t4:g}°"
                      .replace("-", "−"))
     finish_layout(fig, head, height, subplot_titles=True)
     fig.update_layout(margin=dict(l=_MARGIN["l"], r=_MARGIN["r"], b=_MARGIN["b"]))
-    fig.update_xaxes(range=xr_top, row=1, col=1, constrain="domain", zeroline=False)
-    fig.update_yaxes(range=yr_top, row=1, col=1, title_text="y_b (m)", scaleanchor="x", scaleratio=1,
-                     constrain="domain", zeroline=False)
-    fig.update_xaxes(range=xr_side, row=2, col=1, title_text="x_b (m)", constrain="domain", zeroline=False)
-    fig.update_yaxes(range=zr_side, row=2, col=1, title_text="z_b (m)", scaleanchor="x2", scaleratio=1,
-                     constrain="domain", zeroline=False)
-    panels = {"top": (xr_top, yr_top, tuple(fig.layout.yaxis.domain)),
-              "side": (xr_side, zr_side, tuple(fig.layout.yaxis2.domain))}
-    fig.update_layout(meta=dict(panels=panels))
-    _place_labels(fig, ann, segs, panels, ref)
+    panels = _lay_out_views(fig, xr, yr_top, zr_side)
+    _place_frame_annotations(fig, d.ann, d.segs, panels, _REF)
     return fig
 
 
-def _place_labels(fig, ann, segs, panels, ref):
+def _place_frame_annotations(fig, ann, segs, panels, ref):
     top = fig.layout.margin.t
     maps = {w: _panel_px(panels, w, fig.layout.height, top) for w in CHECK_WIDTHS}
     placed = {w: [] for w in CHECK_WIDTHS}

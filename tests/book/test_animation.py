@@ -125,3 +125,22 @@ def test_bad_arguments(traj):
         frame_indices(traj.t[:10], traj.x)
     with pytest.raises(scara.ScaraError):
         frame_indices(traj.t, traj.x, dense=(0.0, 1.0))
+
+
+def test_a_coarsely_sampled_motion_has_a_frame_at_every_sample(traj):
+    """A motion sampled more coarsely than ``fast`` (here every 0.5 s against fast = 0.1 s) is animated with one
+    frame per sample, not refused for asking too many frames."""
+    coarse = slice(None, None, int(round(0.5 / (traj.t[1] - traj.t[0]))))
+    t, x = traj.t[coarse], traj.x[coarse]
+    assert t.size < MAX_FRAMES
+    idx = frame_indices(t, x, fast=0.1)
+    assert idx[0] == 0 and idx[-1] == t.size - 1 and np.all(np.diff(idx) >= 1)
+    gaps = np.diff(t[idx])
+    assert gaps.max() <= 1.0 + 1e-9  # never more than ``rest`` = 1 s apart
+    moving = np.linalg.norm(np.diff(x[:, :3], axis=0), axis=1) > 0
+    assert np.isclose(gaps.min(), 0.5) and moving.any()  # while the tool moves, a frame at every sample
+
+
+def test_too_many_frames_message_is_true(traj):
+    with pytest.raises(scara.ScaraError, match=rf"fast = 0.001 s asks for more than {MAX_FRAMES} frames"):
+        frame_indices(traj.t, traj.x, fast=0.001)

@@ -1,7 +1,8 @@
-"""Figure builders of chapter 5 written for the static page: the window maximum behind the energy figure's residual
-panel, the residual panel itself (one line per window, no aliased band, a y title that fits its panel), and the
-static slider figure of the inertia entries against the elbow angle, whose numbers are checked against the closed
-form of the chapter (equations eq-dyn-B11 and eq-dyn-B12), typed here independently of the package."""
+"""The figures of scara.plots.dynamics, written for the static page of chapter 5: the window maximum behind the
+energy figure's residual panel, the residual panel itself (one line per window, no aliased band, a y title that fits
+its panel), the static slider figure of the inertia entries against the elbow angle, whose numbers are checked
+against the closed form of the chapter (equations eq-dyn-B11 and eq-dyn-B12), typed here independently of the
+package, and the sample counts every torque and energy figure refuses before any work."""
 from __future__ import annotations
 
 import math
@@ -15,6 +16,7 @@ from scara.plots.dynamics import energy_figure, inertia_slider_figure, window_ma
 from scara.plots.layout import _text_width
 
 from _figure_rules import check_axis_titles_with_units, check_reads_on_a_laptop_and_a_phone, title_lines
+from _plots_shared import SAMPLE_COUNTS, check_sample_count_refused
 
 P = ScaraParams()
 P5 = P.with_payload(5.0)
@@ -177,3 +179,13 @@ def test_inertia_slider_figure_refuses_sizes_beyond_its_limits(angles, masses, a
 def test_inertia_slider_figure_refuses_a_configuration_of_the_wrong_shape():
     with pytest.raises(ScaraError, match="q"):
         inertia_slider_figure(ELBOW, MASSES, q=[0.0, 0.0, 0.5])
+
+
+# ------------------------------------------------------------------------------------------------------ sample counts
+@pytest.mark.parametrize("build, args, count", [
+    ("torque_terms_figure", (None, {}), "target"), ("payload_torque_figure", (None, {}), "target"),
+    ("payload_slider_figure", (None, {}), "target"), ("energy_figure", (None, {}), "target"),
+])
+@pytest.mark.parametrize("value, names", SAMPLE_COUNTS)
+def test_dynamics_figures_refuse_sample_counts_beyond_the_limit_before_any_work(build, args, count, value, names):
+    check_sample_count_refused(build, args, count, value, names)
