@@ -420,6 +420,10 @@ TABLE = [
           # documented: step_cost is "NaN" when no controller is given
           documented_non_finite=("result['step_cost']",)),
     Entry("control", "chattering", lambda: [_result_arg()]),
+    # what a helper reads of a run of another kind of controller: a ScaraError naming what it needs
+    Entry("control", "recorded_signals", lambda: [_result_arg(), contract("names", ("payload_estimate",)),
+                                                  contract("who", "a helper")]),
+    Entry("control", "final_state", lambda: [_result_arg(), small_int("size", 0, 14, False), contract("who", "a helper")]),
     Entry("control", "law_cost", lambda: [_controller_arg(), _result_arg(), small_int("repeats", 1, 2)],
           examples=EXPENSIVE_EXAMPLES, scenario=lambda: _run_pairs(("controller", "result"))),
     Entry("control", "replay_law", lambda: [_controller_arg(), _result_arg(), small_int("n", 1, 300)],

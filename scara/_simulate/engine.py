@@ -174,7 +174,7 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
 
 def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float | None = None, *,
              joint_reference=None, q0=None, qd0=None, substeps: int = 1, duration: float | None = None,
-             elbow: int = -1, limit: float = 1e6) -> SimulationResult:
+             elbow: int | None = None, limit: float = 1e6) -> SimulationResult:
     """Run ``controller`` in closed loop on ``plant`` along ``traj``: the simulation engine of chapter 5.
 
     Parameters
@@ -190,7 +190,8 @@ def simulate(controller, traj=None, plant: ScaraParams | None = None, dt: float 
     joint_reference : (N, 12) ``[q_d, qd_d, qdd_d]``, a ``(q, qd, qdd)`` tuple or an object with
         ``q, qd, qdd`` (a ``clik2`` result). Default for joint controllers: ``clik2(traj)``.
     q0, qd0 : initial state; default the reference's first sample (joint controllers) or the inverse
-        kinematics of ``x_d(0)`` with ``elbow`` (operational controllers); ``qd0`` default zero / reference.
+        kinematics of ``x_d(0)`` with ``elbow`` (operational controllers; default the trajectory's own
+        ``traj.elbow``, else -1); ``qd0`` default zero / reference.
     substeps : RK4 steps per sampling period (the torque is held over all of them), a whole number from 1 to
         :data:`MAX_SUBSTEPS` (1000).
     duration : length (s) of an open-loop run (``reference_kind == "none"``) without trajectory: a whole number

@@ -294,9 +294,14 @@ def recorded_signals(result, names, who: str) -> np.ndarray:
     return np.column_stack([np.asarray(signals[n], dtype=float) for n in names])
 
 
+#: the largest state a law may keep (entries): far above any law's (the adaptive law keeps 14)
+MAX_STATE = 100_000
+
+
 def final_state(result, size: int, who: str) -> np.ndarray:
     """A copy of the law's state (``size`` numbers) at the end of a run; :class:`~scara.ScaraError` naming
     ``who`` needs it when the run's controller kept another state."""
+    size = check_count(size, "size", 0, MAX_STATE, "state entries")
     extra = getattr(result, "extra", None)
     state = extra.get("final_state") if isinstance(extra, dict) else None
     got = None if state is None else np.size(state)

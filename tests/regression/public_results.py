@@ -16,7 +16,7 @@ An array's fingerprint is the SHA-256 of its bytes (equal means bit-identical), 
 entries and of their magnitudes, and at most ``SAMPLES`` of its entries evenly spread over it. ``compare``
 accepts an array that is bit-identical, or whose sums and samples agree within ``RTOL`` relative to the array's
 largest magnitude (an operation whose order changed); it prints one line per difference and exits 1 when there
-is any. Timings (``run_time``, ``elapsed`` and glued numbers in ms or s of the machine's clock) are not results
+is any. Timings (``elapsed``, and glued numbers in ms or ns of the machine's clock) are not results
 and are left out by name (``VARYING``).
 """
 from __future__ import annotations
@@ -39,7 +39,7 @@ DEFAULT_OUT = ROOT / "tests" / "regression" / "public_results.json.gz"
 SAMPLES = 64
 RTOL = 1e-15
 #: names (regular expressions on the full key) whose values are the machine's timings, not results
-VARYING = re.compile(r"(run_time|elapsed|_ms$|_ms_|speed|timing|per_move|wall|cpu_|_cost|cost_|seconds|ratio_numba|"
+VARYING = re.compile(r"(run_time|elapsed|_ms$|_ms_|_ns$|speed|timing|per_move|wall|cpu_|_cost|cost_|seconds|ratio_numba|"
                      r"startup|import_time|compile)", re.I)
 
 
