@@ -194,6 +194,20 @@ def show_call(name, kwargs):
 # --------------------------------------------------------------------------------------------------
 # the result check
 # --------------------------------------------------------------------------------------------------
+def _members(obj, path):
+    """The ``(path, value)`` pairs one level inside ``obj`` (a dict's items, a sequence's entries, a dataclass's
+    fields, an object's attributes), or None for anything else."""
+    if isinstance(obj, dict):
+        return [(f"{path}[{k!r}]", v) for k, v in obj.items()]
+    if isinstance(obj, (list, tuple)):
+        return [(f"{path}[{i}]", v) for i, v in enumerate(obj)]
+    if dataclasses.is_dataclass(obj):
+        return [(f"{path}.{f.name}", getattr(obj, f.name)) for f in dataclasses.fields(obj)]
+    if hasattr(obj, "__dict__") and not callable(obj):
+        return [(f"{path}.{k}", v) for k, v in vars(obj).items() if not k.startswith("__")]
+    return None
+
+
 def arrays_in(obj, path="args", depth=0, seen=None):
     """Every NumPy array reachable from ``obj`` (through dicts, lists, tuples, dataclasses and objects'
     attributes, as :func:`non_finite` walks them), as ``(path, array)`` pairs."""
@@ -208,15 +222,8 @@ def arrays_in(obj, path="args", depth=0, seen=None):
     if id(obj) in seen:
         return
     seen.add(id(obj))
-    if isinstance(obj, dict):
-        items = [(f"{path}[{k!r}]", v) for k, v in obj.items()]
-    elif isinstance(obj, (list, tuple)):
-        items = [(f"{path}[{i}]", v) for i, v in enumerate(obj)]
-    elif dataclasses.is_dataclass(obj):
-        items = [(f"{path}.{f.name}", getattr(obj, f.name)) for f in dataclasses.fields(obj)]
-    elif hasattr(obj, "__dict__") and not callable(obj):
-        items = [(f"{path}.{k}", v) for k, v in vars(obj).items() if not k.startswith("__")]
-    else:
+    items = _members(obj, path)
+    if items is None:
         return
     for sub, v in items:
         yield from arrays_in(v, sub, depth + 1, seen)
@@ -273,15 +280,8 @@ def non_finite(obj, path="result", allow_inf=False, depth=0, seen=None, skip=())
     if id(obj) in seen:
         return None
     seen.add(id(obj))
-    if isinstance(obj, dict):
-        items = [(f"{path}[{k!r}]", v) for k, v in obj.items()]
-    elif isinstance(obj, (list, tuple)):
-        items = [(f"{path}[{i}]", v) for i, v in enumerate(obj)]
-    elif dataclasses.is_dataclass(obj):
-        items = [(f"{path}.{f.name}", getattr(obj, f.name)) for f in dataclasses.fields(obj)]
-    elif hasattr(obj, "__dict__") and not callable(obj):
-        items = [(f"{path}.{k}", v) for k, v in vars(obj).items() if not k.startswith("__")]
-    else:
+    items = _members(obj, path)
+    if items is None:
         return None
     for p, v in items:
         if callable(v) and not isinstance(v, np.ndarray) and not hasattr(v, "__dict__"):

@@ -373,10 +373,11 @@ def test_chapter_figures_and_panel(scenario):
     assert panel.last_error is None
     panel.controls["theta2"].value = 30.0
     assert panel.last_error is None
-    view = panel.draw(panel.compute(payload=5.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4))
-    assert "4.905 mm" in view.table  # the sag m_L g0 / K_P3 listed in the panel
+    rows, _notes = panel.declaration.summary(panel.compute(dict(payload=5.0, theta1=0.0, theta2=-90.0, d3=0.5,
+                                                                  theta4=0.0, K_P3=1e4)))
+    assert "4.905 mm" in str(rows)  # the sag m_L g0 / K_P3 listed in the panel
     with pytest.raises(ScaraError):  # the panel shows this message in place of the plot
-        panel.compute(payload=-1.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4)
+        panel.compute(dict(payload=-1.0, theta1=0.0, theta2=-90.0, d3=0.5, theta4=0.0, K_P3=1e4))
 
 
 # --- the plant's reduced solve (joints 3 and 4 eliminated) against the general forward dynamics ---------

@@ -20,33 +20,13 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import public_results as pr  # noqa: E402
 
-#: results whose name changed with the package's one vocabulary (recorded name -> name now); the values are
-#: compared as before
-RENAMED: dict[str, str] = {
-    "summary/max_abs_error": "summary/max_abs_error_components",
-    "summary/rms_error": "summary/rms_error_components",
-    "summary/steady_state_error": "summary/steady_state_error_components",
-}
-
-
 def _recorded(prefix: str) -> dict:
     with gzip.open(pr.DEFAULT_OUT, "rt") as fh:
         return {k: v for k, v in json.load(fh).items() if k.startswith(prefix)}
 
 
-def _renamed(recorded: dict) -> dict:
-    out = {}
-    for key in recorded:
-        new = key
-        for old, now in RENAMED.items():
-            if key.endswith("/" + old):
-                new = key[: -len(old)] + now
-        out[key] = new
-    return out
-
-
 def _check(recorded: dict, current: dict):
-    problems = pr.compare(recorded, current, _renamed(recorded))
+    problems = pr.compare(recorded, current)
     shown = "\n".join(problems[:40])
     assert not problems, f"{len(problems)} of {len(recorded)} recorded results changed:\n{shown}"
 
