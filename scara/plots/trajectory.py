@@ -164,8 +164,17 @@ def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
     with a fixed seed (the same labels always get the same places), then polished label by label.
     """
     k = len(texts)
-    widths = [_text_width(t, _LABEL_FONT) for t in texts]
     todo = [i for i in range(k) if texts[i]]
+    unary, pair = _label_costs(views, texts, todo, weights)
+    state = _least_cost_places(unary, pair, todo)
+    return [_LABEL_POSITIONS[state[i]] if i in todo else "top center" for i in range(k)]
+
+
+def _label_costs(views, texts, todo, weights):
+    """The costs of :func:`_place_waypoint_labels`: ``unary[i, a]`` of label ``i`` at place ``a`` (k, npos) and
+    ``pair[i, a, j, b]`` of labels ``i`` at ``a`` and ``j`` at ``b`` together (k, npos, k, npos)."""
+    k = len(texts)
+    widths = [_text_width(t, _LABEL_FONT) for t in texts]
     npos = len(_LABEL_POSITIONS)
     w_label, w_avoid, w_marker, w_curve = weights
     pts0 = np.asarray(views[0]["points"], float)
@@ -209,6 +218,13 @@ def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
                             pair[i, a, j, b] += w_label
             pair[j, :, i, :] = pair[i, :, j, :].T
 
+    return unary, pair
+
+
+def _least_cost_places(unary, pair, todo):
+    """The place index per label that (nearly) minimises the total cost: a greedy start, simulated annealing
+    with a fixed seed, then a polish one label at a time (see :func:`_place_waypoint_labels`)."""
+    k, npos = unary.shape
     # the conflicts of each place, as short lists (most pairs of places never meet): plain Python is fast here
     un = unary.tolist()
     conflicts = [[[(j, b, float(pair[i, a, j, b])) for j in todo if j != i for b in range(npos) if pair[i, a, j, b]]
@@ -254,7 +270,7 @@ def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
                     state[i], moved = a, True
             if not moved:
                 break
-    return [_LABEL_POSITIONS[state[i]] if i in todo else "top center" for i in range(k)]
+    return state
 
 
 def _merged_labels(traj, idx):

@@ -28,20 +28,23 @@ def clik_declaration(traj=None, p=None, points: int = 800) -> Panel:
     p = ScaraParams.resolve(p)
     traj = trajectory_arg(traj, p)
     pseudo = tuple(label for label, m in METHOD_CHOICES.items() if m == "pseudoinverse")
+    damped = tuple(label for label, m in METHOD_CHOICES.items() if m != "transpose")  # the transpose solves nothing
     gains = tuple(Control(name, "slider", label, float(k), 1.0, 2500.0, 0.01, scale="log", unit="1/s", readout=".0f")
                   for (name, _, label), k in zip(_GAINS, SEED_K))
     controls = (Control("method", "dropdown", "method", "Jacobian inverse", options=tuple(METHOD_CHOICES)),
                 Control("relaxed", "dropdown", "relaxed (pseudo-inverse)", "x", options=tuple(COMPONENTS),
                         applies_to=pseudo),
                 *gains,
-                Control("damping", "slider", "damping λ (m)", 0.0, 0.0, 0.2, 0.005, unit="m", readout=".3f"),
+                Control("damping", "slider", "damping λ (m)", 0.0, 0.0, 0.2, 0.005, unit="m", readout=".3f",
+                        applies_to=damped),
                 Control("k0", "slider", "null-space gain k0 (1/s)", 1.0, 0.0, 20.0, 0.5, unit="1/s",
                         applies_to=pseudo))
 
     def compute(v):
         m = METHOD_CHOICES[v["method"]]
         K = np.array([v["Kx"], v["Ky"], v["Kz"], v["Kphi"]])
-        r = run_method(traj, m, K, p=p, damping=v["damping"], relaxed=v["relaxed"], k0=v["k0"])
+        damping = v["damping"] if v["method"] in damped else 0.0  # a greyed-out control is not read
+        r = run_method(traj, m, K, p=p, damping=damping, relaxed=v["relaxed"], k0=v["k0"])
         return dict(method=m, relaxed=v["relaxed"], result=r, summary=r.summary())
 
     def summary(st):

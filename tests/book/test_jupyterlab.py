@@ -175,8 +175,10 @@ def check_clik(values, figs, traj):
         r = clik2(traj, *second_order_gains(K), damping=values["damping"])
     elif m == "pseudoinverse":
         r = clik(traj, m, K, damping=values["damping"], relaxed=values["relaxed"], k0=values["k0"])
-    else:
+    elif m == "inverse":
         r = clik(traj, m, K, damping=values["damping"])
+    else:  # the transpose solves no linear system: its panel does not read the (greyed-out) damping
+        r = clik(traj, m, K)
     mm = r.summary()["max_position_error"] * 1e3
     assert figs[0]["title"] == f"{METHOD_LABELS[m]}: max ‖e_p‖ after 0.1 s = {mm:.4g} mm", figs[0]["title"]
 
@@ -247,8 +249,9 @@ PANELS = {
         dict(name="CLIK", three_d=False, check=lambda v, f, ref: check_clik(v, f, ref[0]),
              moves=[("method", "select", "Jacobian transpose")]
              + [(c, "key", k) for c in ("K_x (1/s)", "K_y (1/s)", "K_z (1/s)", "K_φ (1/s)") for k in KEYS]
-             + [("damping λ (m)", "key", "ArrowRight"), ("damping λ (m)", "key", "ArrowLeft"),
-                ("method", "select", "pseudo-inverse + null space"), ("relaxed (pseudo-inverse)", "select", "y"),
+             + [("method", "select", "pseudo-inverse + null space"),  # the damping is greyed out for the transpose
+                ("damping λ (m)", "key", "ArrowRight"), ("damping λ (m)", "key", "ArrowLeft"),
+                ("relaxed (pseudo-inverse)", "select", "y"),
                 ("null-space gain k0 (1/s)", "key", "ArrowRight"), ("method", "select", "second order"),
                 ("method", "select", "Jacobian inverse")],
              refuse=[("method", "select", "Jacobian transpose", None),
