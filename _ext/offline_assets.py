@@ -32,7 +32,7 @@ def _copy_plotly(app, exc):
 
 def _page_context(app, pagename, templatename, context, doctree):
     body = context.get("body", "") or ""
-    if "plotly-graph-div" in body:
+    if "plotly-graph-div" in body or "data-scara-panel" in body:
         app.add_js_file(PLOTLY_JS, priority=100)
     scripts = context.get("script_files")
     if scripts:

@@ -25,7 +25,7 @@ from typing import Any, Callable
 from ..errors import ScaraError, check_number
 
 __all__ = ["Control", "FigurePair", "Panel", "KINDS", "SCALES", "start_value", "angle_control", "stroke_control",
-           "apply_update", "rebuilt_update"]
+           "apply_update", "rebuilt_update", "range_template", "set_path", "PageProgram", "Text", "Flag", "program_panel"]
 
 #: the kinds of control: a slider, a dropdown of choices, a typed number, an on/off toggle
 KINDS = ("slider", "dropdown", "number", "toggle")
@@ -43,9 +43,15 @@ def start_value(value, lo: float, hi: float, name: str, unit: str = "", limit: s
     """
     v = check_number(value, name, unit=unit)
     if not (lo <= v <= hi):
-        u = unit if unit == "°" else (f" {unit}" if unit else "")
-        raise ScaraError(f"{name} = {v:g}{u} is outside {limit} {lo:g} to {hi:g}{u}")
+        raise ScaraError(range_template(name, lo, hi, unit, limit).format(value=v))
     return v
+
+
+def range_template(name: str, lo: float, hi: float, unit: str = "", limit: str = "the panel's range") -> str:
+    """The message of a value outside ``[lo, hi]``, with ``{value:g}`` where the value goes: the one wording of
+    :func:`start_value` and of the page panel's check of a typed value."""
+    u = unit if unit == "°" else (f" {unit}" if unit else "")
+    return f"{name} = {{value:g}}{u} is outside {limit} {lo:g} to {hi:g}{u}"
 
 
 @dataclass(frozen=True)
@@ -177,7 +183,26 @@ def apply_update(fig_json: dict, update: dict, pair: FigurePair) -> dict:
             layout[k] = _merged(layout.get(k), v)
     if update.get("title") is not None:
         layout["title"] = dict(layout.get("title") or {}, text=update["title"])
+    for path, value in (update.get("paths") or {}).items():
+        layout = set_path(layout, path, value)
     return {"data": data, "layout": layout}
+
+
+def set_path(tree: dict, path: str, value):
+    """``tree`` with the entry at the dotted ``path`` (``"xaxis.range"``, ``"annotations.2.text"``: a number
+    indexes a list) set to ``value``: a new dict, copying the dicts and lists on the path and sharing the rest.
+    A missing dict on the path is created; a missing list entry raises ``KeyError`` naming the path."""
+    head, _, rest = path.partition(".")
+    if isinstance(tree, list):
+        i = int(head)
+        if not 0 <= i < len(tree):
+            raise KeyError(f"layout path {path!r}: no entry {i} in a list of {len(tree)}")
+        out = list(tree)
+        out[i] = set_path(out[i], rest, value) if rest else value
+        return out
+    out = dict(tree or {})
+    out[head] = set_path(out.get(head) if out.get(head) is not None else {}, rest, value) if rest else value
+    return out
 
 
 @dataclass(frozen=True)
@@ -187,7 +212,9 @@ class Panel:
     ``explain(exc, settings) -> str`` words a refusal in the panel's units (default: the exception's text);
     ``react(name, settings) -> dict`` gives the controls a change of ``name`` sets in turn (e.g. the values of
     the waypoint a dropdown picked), the panel then computes once; ``selector`` is the control whose value the
-    controls' ``applies_to`` refer to; ``columns`` is the number of controls per row.
+    controls' ``applies_to`` refer to; ``columns`` is the number of controls per row. ``widget`` names the
+    :mod:`scara.widgets` function that builds the panel, and ``page`` is its :class:`PageProgram` when the
+    panel also runs in the book's pages (:func:`program_panel` makes such a panel).
     """
 
     name: str
@@ -200,6 +227,8 @@ class Panel:
     react: Callable | None = None
     selector: str | None = None
     columns: int = 2
+    widget: str | None = None
+    page: PageProgram | None = None
 
     def control(self, name: str) -> Control:
         """The control called ``name``."""
@@ -215,3 +244,229 @@ class Panel:
     def applies(self, control: Control, settings: dict) -> bool:
         """Whether ``control`` is read for ``settings`` (its ``applies_to`` holds the selector's value)."""
         return control.applies_to is None or settings[self.selector] in control.applies_to
+
+
+# --------------------------------------------------------------------------------------------------
+# the page program: one compiled computation of a panel's move, run by numba here and, translated, in the page
+# --------------------------------------------------------------------------------------------------
+import re as _re  # noqa: E402
+
+import numpy as _np  # noqa: E402
+
+#: a template's field: ``{name:spec}`` with a format spec of Python's mini-language limited to what the page's
+#: formatter implements the same way (sign, width, precision and one of ``f g e %``); ``{name}`` is a setting
+#: given as text (a dropdown's value)
+_FIELD = _re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)(?::([^{}]*))?\}")
+_SPEC = _re.compile(r"^([+ ])?(\d+)?(?:\.(\d+))?([fge%])$")
+
+
+@dataclass(frozen=True)
+class Text:
+    """A string made from a panel's values: ``template`` in Python's ``str.format`` syntax, every field named
+    (an output of the program or a control) and, for a number, a format spec of sign, width, precision and one
+    of ``f g e %`` (``{w:.4f}``). The page formats it the same way (its formatter implements exactly these)."""
+
+    template: str
+
+    def __post_init__(self):
+        for name, spec in _FIELD.findall(self.template):
+            if spec and not _SPEC.match(spec):
+                raise ScaraError(f"template {self.template!r}: the format spec {spec!r} of {name!r} is not one the "
+                                 "page formats (sign, width, precision and one of f g e %)")
+
+    @property
+    def names(self) -> tuple:
+        return tuple(n for n, _ in _FIELD.findall(self.template))
+
+    def format(self, values: dict) -> str:
+        for name, spec in _FIELD.findall(self.template):
+            if not spec and not isinstance(values[name], str):
+                raise ScaraError(f"template {self.template!r}: the number {name!r} needs a format spec")
+        return self.template.format(**values)
+
+
+@dataclass(frozen=True)
+class Flag:
+    """A boolean made from a program's output: true when ``field`` (one number) is not 0."""
+
+    field: str
+
+
+@dataclass(frozen=True)
+class PageProgram:
+    """The computation of a panel's move as one compiled kernel, with how its outputs are drawn.
+
+    ``kernel(inputs, data, out) -> int`` is a :func:`~scara._compile.kernel` in the subset the page's
+    translator takes (:mod:`scara.page`): ``inputs`` holds the controls named in :attr:`inputs`, in order (a
+    slider or a typed number as its value, a dropdown as the index of its value in the control's ``values``, a
+    toggle as 0 or 1); ``data`` the panel's fixed numbers (the robot, the path: :attr:`data`, made once in
+    Python); ``out`` the fields of :attr:`outputs`. It returns 0 for a setting it draws, or the key of
+    :attr:`refusals` whose message says why not (formatted with the outputs it wrote). ``out`` starts zeroed.
+
+    The drawing is data: :attr:`traces` maps a figure's role to ``{trace key: {property: binding}}``,
+    :attr:`paths` a figure's role to ``{dotted layout path: binding}`` (``"xaxis.range"``,
+    ``"annotations.2.text"``), :attr:`titles` a figure's role to a :class:`Text`. A binding is the name of an
+    output field (one number, or its numbers as an array), a :class:`Text`, a :class:`Flag` or a tuple of
+    bindings (a list). :attr:`rows` are the summary's ``(label, Text)`` rows and :attr:`notes` its ``(Flag,
+    Text)`` notes. Both front ends draw from these: the same properties set to the same numbers.
+    """
+
+    kernel: Callable
+    inputs: tuple
+    data: Any
+    outputs: Any
+    refusals: dict
+    traces: dict
+    paths: dict = None
+    titles: dict = None
+    rows: tuple = ()
+    notes: tuple = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "data", _np.array(self.data, dtype=_np.float64).ravel())
+        object.__setattr__(self, "paths", dict(self.paths or {}))
+        object.__setattr__(self, "titles", dict(self.titles or {}))
+        fields = set(self.outputs.names) | set(self.inputs)
+        for t in self._texts():
+            unknown = [n for n in t.names if n not in fields]
+            if unknown:
+                raise ScaraError(f"template {t.template!r} names {unknown}, which are neither outputs "
+                                 f"{self.outputs.names} nor controls {self.inputs}")
+        for b in self._fields():
+            if b not in self.outputs.names:
+                raise ScaraError(f"binding {b!r} is not an output of the program; its outputs are {self.outputs.names}")
+
+    def _bindings(self):
+        for props in self.traces.values():
+            for tr in props.values():
+                yield from tr.values()
+        for paths in self.paths.values():
+            yield from paths.values()
+        yield from self.titles.values()
+        for _, t in self.rows:
+            yield t
+        for f, t in self.notes:
+            yield f
+            yield t
+        yield from self.refusals.values()
+
+    def _walk(self, b):
+        if isinstance(b, tuple):
+            for x in b:
+                yield from self._walk(x)
+        else:
+            yield b
+
+    def _texts(self):
+        return [x for b in self._bindings() for x in self._walk(b) if isinstance(x, Text)]
+
+    def _fields(self):
+        out = []
+        for b in self._bindings():
+            for x in self._walk(b):
+                if isinstance(x, str):
+                    out.append(x)
+                elif isinstance(x, Flag):
+                    out.append(x.field)
+        return out
+
+    def pack(self, settings: dict, controls) -> "_np.ndarray":
+        """The ``inputs`` vector of ``settings`` (see the class's docstring); ``controls`` maps a name to its
+        :class:`Control`."""
+        vec = _np.empty(len(self.inputs))
+        for i, name in enumerate(self.inputs):
+            c, v = controls[name], settings[name]
+            if c.kind == "dropdown":
+                vec[i] = c.values.index(v)
+            elif c.kind == "toggle":
+                vec[i] = 1.0 if v else 0.0
+            else:
+                vec[i] = check_number(v, name, unit=c.unit)
+        return vec
+
+    def run(self, settings: dict, controls) -> dict:
+        """Run the kernel for ``settings``: the outputs by field (one number as a float, more as a new array) with
+        the settings, or :class:`ScaraError` with the refusal's message."""
+        out = _np.zeros(self.outputs.size)
+        status = int(self.kernel(self.pack(settings, controls), self.data, out))
+        values = self.values(out, settings)
+        if status != 0:
+            if status not in self.refusals:
+                raise ScaraError(f"the panel's program returned status {status}, which it does not declare")
+            raise ScaraError(self.refusals[status].format(values))
+        return values
+
+    def values(self, out, settings: dict) -> dict:
+        """The outputs of ``out`` by field (one number as a float, more as an array) with the settings."""
+        values = dict(settings)
+        for name, start in zip(self.outputs.names, self.outputs.offsets):
+            n = self.outputs.sizes[name]
+            values[name] = float(out[start]) if n == 1 else _np.array(out[start:start + n])
+        return values
+
+    def bound(self, b, values):
+        """The value of the binding ``b`` for ``values`` (see the class's docstring)."""
+        if isinstance(b, tuple):
+            return [self.bound(x, values) for x in b]
+        if isinstance(b, Text):
+            return b.format(values)
+        if isinstance(b, Flag):
+            return bool(values[b.field] != 0)
+        return values[b]
+
+    def update(self, role: str, values: dict) -> dict:
+        """The update (see :func:`apply_update`) of the figure ``role`` for ``values``."""
+        traces = {key: {prop: self.bound(b, values) for prop, b in props.items()}
+                  for key, props in self.traces.get(role, {}).items()}
+        paths = {path: self.bound(b, values) for path, b in self.paths.get(role, {}).items()}
+        title = self.titles.get(role)
+        return dict(traces=traces, paths=paths, title=None if title is None else title.format(values))
+
+    def summary(self, values: dict):
+        """The summary's rows and notes for ``values``."""
+        rows = [(label, t.format(values)) for label, t in self.rows]
+        notes = [t.format(values) for f, t in self.notes if values[f.field] != 0]
+        return rows, notes
+
+    def describe(self, panel) -> dict:
+        """The program as JSON-ready data for the page: everything but the kernel (named by the page's engine)."""
+
+        def enc(b):
+            if isinstance(b, tuple):
+                return {"list": [enc(x) for x in b]}
+            if isinstance(b, Text):
+                return {"text": b.template}
+            if isinstance(b, Flag):
+                return {"flag": b.field}
+            return {"field": b}
+
+        controls = {c.name: c for c in panel.controls}
+        return dict(
+            kernel=getattr(self.kernel, "__name__", str(self.kernel)),
+            inputs=[dict(name=n, kind=controls[n].kind, values=list(controls[n].values)) for n in self.inputs],
+            data=self.data.tolist(),
+            outputs=[dict(name=n, offset=o, size=self.outputs.sizes[n])
+                     for n, o in zip(self.outputs.names, self.outputs.offsets)],
+            size=self.outputs.size,
+            refusals={str(k): v.template for k, v in self.refusals.items()},
+            traces={role: {key: {prop: enc(b) for prop, b in props.items()} for key, props in tr.items()}
+                    for role, tr in self.traces.items()},
+            paths={role: {path: enc(b) for path, b in ps.items()} for role, ps in self.paths.items()},
+            titles={role: t.template for role, t in self.titles.items()},
+            rows=[[label, t.template] for label, t in self.rows],
+            notes=[[f.field, t.template] for f, t in self.notes])
+
+
+def program_panel(name: str, title: str, controls: tuple, program: PageProgram, builders: dict, widget: str,
+                  explain: Callable | None = None, react: Callable | None = None, selector: str | None = None,
+                  columns: int = 2, roles: dict | None = None) -> Panel:
+    """A :class:`Panel` whose every move is ``program``: ``compute`` runs its kernel (:meth:`PageProgram.run`),
+    each figure of ``builders`` (role -> ``values -> go.Figure``, in the panel's order) is updated by the
+    program's bindings (:meth:`PageProgram.update`), the summary is the program's rows and notes. ``roles``
+    gives a figure's trace roles (see :class:`FigurePair`) where the trace keys are not the traces' names."""
+    by_name = {c.name: c for c in controls}
+    roles = roles or {}
+    figures = tuple(FigurePair(role, build, (lambda values, role=role: program.update(role, values)),
+                               tuple(roles.get(role, ()))) for role, build in builders.items())
+    return Panel(name, title, controls, lambda settings: program.run(settings, by_name), figures,
+                 program.summary, explain, react, selector, columns, widget, program)

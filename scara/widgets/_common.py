@@ -27,20 +27,21 @@ import ipywidgets as ipw
 import numpy as np
 import plotly.graph_objects as go
 from plotly.basedatatypes import Undefined
-from IPython.display import display
 
 from ..errors import ScaraError
 from ..plots.layout import without_template
 from ..plots.panels import Control, Panel, apply_update, start_value
 
 __all__ = ["LivePanel", "build_control", "table", "readable", "start_value", "trajectory_arg", "LABEL_STYLE",
-           "STALE_TITLE"]
+           "STALE_TITLE", "REFUSED"]
 
 #: the style of every control: its description shown in full, not cut to a fixed width
 LABEL_STYLE = {"description_width": "initial"}
 
 #: the title a figure shows while the controls describe a setting that was refused
 STALE_TITLE = "Not current: this setting was refused (see the message above)"
+#: the words before a refusal's message
+REFUSED = "Cannot show this setting:"
 
 #: style shared by every panel: a stale figure is greyed out as well as emptied
 _STYLE = """<style>
@@ -338,7 +339,7 @@ class LivePanel:
     def _refuse(self, text: str) -> None:
         """Show ``text`` and mark every figure stale: traces hidden, title replaced, greyed out."""
         self.last_error = text
-        self.message.value = f"<b>Cannot show this setting:</b> {html.escape(text)}"
+        self.message.value = f"<b>{REFUSED}</b> {html.escape(text)}"
         self.info.value = self._values_html()
         self.notes.value = ""
         if self._stale:
@@ -352,8 +353,16 @@ class LivePanel:
             self.redraws += 1
         self._stale = True
 
-    def _ipython_display_(self):
-        display(self.widget)
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """The ipywidgets view (what Jupyter shows) and, when the declaration has a page program, the page
+        panel as HTML (what the built book shows, computing in the page: :mod:`scara.page.assets`)."""
+        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
+        if self.declaration.page is not None:
+            from ..page.assets import panel_html  # noqa: PLC0415
+
+            bundle = dict(bundle)
+            bundle["text/html"] = panel_html(self)
+        return bundle
 
 
 def trajectory_arg(traj, p):

@@ -1,0 +1,448 @@
+/* The book's live panels in a static page: the mechanics only. Each panel's declaration (controls, program,
+ * bindings, first figures) is JSON the build wrote from the Python declaration; the computation of every move is
+ * the package's own kernels, translated to JavaScript at build time (scara-engine.js), run in a Web Worker.
+ * This file builds the native controls, schedules the work (moves made while the engine is busy collapse to
+ * the latest), formats the declared texts, and hands the arrays to plotly.js. The contract other tools drive
+ * is written in scara/page/assets.py. */
+(function () {
+  "use strict";
+  const SCRIPT = document.currentScript && document.currentScript.src;
+  const ENGINE = SCRIPT ? SCRIPT.replace(/scara-panels\.js(\?.*)?$/, "scara-engine.js") : "_static/scara-engine.js";
+
+  // ---- Python's format mini-language, the part the declarations use: [sign][width][.precision](f|g|e|%) ----
+  // Numbers are rounded from their decimal digits (101 significant digits of the double, which settle every
+  // rounding a panel meets) with Python's ties-to-even, not JavaScript's ties-away.
+  function digitsOf(a) {  // a > 0 finite: [digit string, exponent of the first digit]
+    const [m, e] = a.toExponential(100).split("e");
+    return [m.replace(".", ""), parseInt(e, 10)];
+  }
+  function roundDigits(d, k) {  // the first k (>= 0) digits of d rounded half-even: [digits, carried]
+    if (k >= d.length) return [d + "0".repeat(k - d.length), false];
+    const head = d.slice(0, k), next = d.charCodeAt(k) - 48, rest = /[1-9]/.test(d.slice(k + 1));
+    const last = k > 0 ? head.charCodeAt(k - 1) - 48 : 0;
+    const up = next > 5 || (next === 5 && (rest || last % 2 === 1));
+    if (!up) return [head, false];
+    const arr = head.split("").map(Number);
+    let i = k - 1;
+    while (i >= 0 && arr[i] === 9) { arr[i] = 0; i--; }
+    if (i < 0) return ["1" + arr.join(""), true];
+    arr[i] += 1;
+    return [arr.join(""), false];
+  }
+  function fixed(v, p) {  // |v| with p decimals
+    const a = Math.abs(v);
+    if (a === 0) return p > 0 ? "0." + "0".repeat(p) : "0";
+    if (a >= 1e21) return BigInt(a).toString() + (p > 0 ? "." + "0".repeat(p) : "");
+    const [d, e] = digitsOf(a);
+    const k = e + 1 + p;  // significant digits kept
+    let digits, point;
+    if (k < 0) { digits = ""; point = 0; }
+    else {
+      const [r, carried] = roundDigits(d, k);
+      digits = r; point = e + 1 + (carried ? 1 : 0);
+    }
+    // digits holds the value's digits from 10^(point-1) down to 10^-p
+    let intPart, frac;
+    if (point <= 0) { intPart = "0"; frac = ("0".repeat(-point) + digits).padEnd(p, "0").slice(0, p); }
+    else { intPart = digits.slice(0, point).padEnd(point, "0"); frac = digits.slice(point).padEnd(p, "0").slice(0, p); }
+    intPart = intPart.replace(/^0+(?=\d)/, "");
+    if (!/[1-9]/.test(intPart + frac) && digits === "") intPart = "0";
+    return p > 0 ? intPart + "." + frac : intPart;
+  }
+  function expo(v, p) {  // |v| as d.ddd(p decimals)e+XX
+    const a = Math.abs(v);
+    let m, n;
+    if (a === 0) { m = "0".repeat(p + 1); n = 0; }
+    else {
+      const [d, e] = digitsOf(a);
+      const [r, carried] = roundDigits(d, p + 1);
+      m = carried ? r.slice(0, p + 1) : r; n = e + (carried ? 1 : 0);
+    }
+    return m[0] + (p > 0 ? "." + m.slice(1) : "") + "e" + (n < 0 ? "-" : "+") + String(Math.abs(n)).padStart(2, "0");
+  }
+  function general(v, p) {
+    if (p === 0) p = 1;
+    const a = Math.abs(v);
+    if (a === 0) return "0";
+    const exp = parseInt(expo(a, p - 1).split("e")[1], 10);
+    if (exp >= -4 && exp < p) {
+      let s = fixed(a, p - 1 - exp);
+      if (s.indexOf(".") >= 0) s = s.replace(/0+$/, "").replace(/\.$/, "");
+      return s;
+    }
+    let [m, e] = expo(a, p - 1).split("e");
+    if (m.indexOf(".") >= 0) m = m.replace(/0+$/, "").replace(/\.$/, "");
+    return m + "e" + e;
+  }
+  function formatNumber(v, spec) {
+    const m = /^([+ ])?(\d+)?(?:\.(\d+))?([fge%])$/.exec(spec);
+    if (!m) throw new Error("format spec " + spec + " is not one the page formats");
+    const [, sign, width, prec, type] = m;
+    let body;
+    const neg = v < 0 || Object.is(v, -0);
+    if (Number.isNaN(v)) body = "nan";
+    else if (!Number.isFinite(v)) body = "inf";
+    else {
+      const p = prec === undefined ? 6 : parseInt(prec, 10);
+      if (type === "f") body = fixed(v, p);
+      else if (type === "e") body = expo(v, p);
+      else if (type === "%") body = (Number.isFinite(v * 100) ? fixed(v * 100, p) : "inf") + "%";
+      else body = general(v, prec === undefined ? 6 : p);
+    }
+    let s = (neg && !Number.isNaN(v) ? "-" : (sign === "+" ? "+" : sign === " " ? " " : "")) + body;
+    if (width) s = s.padStart(parseInt(width, 10), " ");
+    return s;
+  }
+  function format(template, values) {
+    return template.replace(/\{([A-Za-z_][A-Za-z0-9_]*)(?::([^{}]*))?\}/g, (all, name, spec) => {
+      const v = values[name];
+      if (v === undefined) throw new Error("the template " + template + " names " + name + ", which has no value");
+      return spec ? formatNumber(Number(v), spec) : String(v);
+    });
+  }
+
+  // ---- the engine: one worker for every panel of the page -------------------------------------------------------
+  let worker = null;
+  const waiting = {};
+  let nextId = 1;
+  function engine() {
+    if (worker) return worker;
+    worker = new Worker(ENGINE);
+    worker.onmessage = (ev) => {
+      const m = ev.data;
+      const cb = waiting[m.id];
+      delete waiting[m.id];
+      if (cb) cb(m);
+    };
+    worker.onerror = (ev) => {
+      for (const id of Object.keys(waiting)) { waiting[id]({error: "the page's engine failed: " + ev.message}); delete waiting[id]; }
+    };
+    return worker;
+  }
+
+  // ---- the address: #NAME.KEY=VALUE&... ------------------------------------------------------------------------
+  function readAddress() {
+    const out = {};
+    const hash = decodeURIComponent(location.hash.replace(/^#/, ""));
+    if (hash.indexOf("=") < 0) return out;
+    for (const part of hash.split("&")) {
+      const eq = part.indexOf("=");
+      const dot = part.indexOf(".");
+      if (eq < 0 || dot < 0 || dot > eq) continue;
+      const panel = part.slice(0, dot), key = part.slice(dot + 1, eq), value = part.slice(eq + 1);
+      (out[panel] = out[panel] || {})[key] = value;
+    }
+    return out;
+  }
+  function writeAddress(name, changed) {
+    const all = readAddress();
+    if (changed && Object.keys(changed).length) all[name] = changed; else delete all[name];
+    const parts = [];
+    for (const [panel, kv] of Object.entries(all)) for (const [k, v] of Object.entries(kv)) parts.push(panel + "." + k + "=" + v);
+    const url = location.pathname + location.search + (parts.length ? "#" + parts.map(encodeURI).join("&") : "");
+    history.replaceState(null, "", url);
+  }
+
+  // ---- one panel -------------------------------------------------------------------------------------------------
+  function el(tag, attrs, parent) {
+    const e = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (k === "text") e.textContent = v; else if (k === "class") e.className = v; else e.setAttribute(k, v);
+    }
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function plain(x) { return x instanceof Float64Array ? Array.from(x, (v) => (Number.isNaN(v) ? null : v)) : x; }
+  function setPath(tree, path, value) {
+    const keys = path.split(".");
+    let o = tree;
+    for (let i = 0; i < keys.length - 1; i++) {
+      const k = Array.isArray(o) ? parseInt(keys[i], 10) : keys[i];
+      if (o[k] === undefined || o[k] === null) {
+        if (Array.isArray(o)) throw new Error("layout path " + path + ": no entry " + k);
+        o[k] = {};
+      }
+      o = o[k];
+    }
+    const last = keys[keys.length - 1];
+    o[Array.isArray(o) ? parseInt(last, 10) : last] = value;
+  }
+
+  class PagePanel {
+    constructor(root, spec) {
+      this.root = root;
+      this.spec = spec;
+      this.name = spec.name;
+      this.prog = spec.program;
+      this.seq = 0;
+      this.busy = false;
+      this.pending = null;
+      this.stale = false;
+      this.values = Object.assign({}, spec.values);
+      this.defaults = Object.assign({}, spec.values);
+      this.build();
+      const saved = readAddress()[this.name];
+      if (saved) this.load(saved);
+      engine().postMessage({type: "data", panel: this.name, data: this.prog.data});
+      this.schedule(performance.now());
+    }
+
+    build() {
+      const s = this.spec, root = this.root;
+      root.classList.add("scara-panel");
+      const head = el("div", {class: "scara-panel-head"}, root);
+      el("b", {text: s.title}, head);
+      const reset = el("button", {type: "button", class: "scara-panel-reset", text: "Reset to the book's values"}, head);
+      reset.addEventListener("click", () => this.reset());
+      el("span", {class: "scara-panel-live", text: "live: computed in this page by the package's own code"}, head);
+      const grid = el("div", {class: "scara-panel-controls", style: "--scara-columns:" + s.columns}, root);
+      this.inputs = {};
+      this.ranges = {};
+      for (const c of s.controls) this.control(grid, c);
+      this.message = el("div", {class: "scara-panel-message", role: "status", "aria-live": "polite"}, root);
+      this.figures = [];
+      for (const f of s.figures) {
+        const box = el("div", {class: "scara-panel-figure"}, root);
+        const gd = el("div", {class: "plotly-graph-div", role: "group", "aria-label": (f.figure.layout.title || {}).text || f.role}, box);
+        const fig = JSON.parse(JSON.stringify(f.figure));
+        this.figures.push({spec: f, box, gd, fig});
+        Plotly.newPlot(gd, fig.data, fig.layout, {displaylogo: false, responsive: true});
+      }
+      this.notes = el("div", {class: "scara-panel-note"}, root);
+      this.info = el("div", {class: "scara-panel-info"}, root);
+      this.valuesEl = el("span", {class: "scara-panel-values", hidden: ""}, root);
+      this.grey();
+    }
+
+    control(grid, c) {
+      const wrap = el("label", {class: "scara-panel-control"}, grid);
+      el("span", {class: "scara-panel-label", text: c.label}, wrap);
+      let input;
+      if (c.kind === "dropdown") {
+        input = el("select", {name: c.name}, wrap);
+        c.options.forEach(([label, value], i) => {
+          const o = el("option", {value: String(i), text: label}, input);
+          if (JSON.stringify(value) === JSON.stringify(this.values[c.name])) o.selected = true;
+        });
+      } else if (c.kind === "toggle") {
+        input = el("input", {type: "checkbox", name: c.name}, wrap);
+        input.checked = !!this.values[c.name];
+      } else {
+        if (c.kind === "slider") {
+          const log = c.scale === "log";
+          const range = el("input", {type: "range", "aria-label": c.label + (log ? " (decades)" : ""),
+            min: String(log ? Math.log10(c.low) : c.low), max: String(log ? Math.log10(c.high) : c.high),
+            step: String(c.step)}, wrap);
+          range.value = String(log ? Math.log10(this.values[c.name]) : this.values[c.name]);
+          range.addEventListener("input", (ev) => {
+            const v = log ? Math.pow(10, Number(range.value)) : Number(range.value);
+            input.value = String(Number(v.toPrecision(12)));
+            this.changed(c, input, ev);
+          });
+          this.ranges[c.name] = range;
+        }
+        input = el("input", {type: "number", name: c.name, step: "any", inputmode: "decimal"}, wrap);
+        if (c.kind === "slider") { input.min = String(c.low); input.max = String(c.high); }
+        input.value = String(this.values[c.name]);
+        if (c.unit) el("span", {class: "scara-panel-unit", text: c.unit}, wrap);
+      }
+      input.addEventListener("change", (ev) => this.changed(c, input, ev));
+      this.inputs[c.name] = input;
+    }
+
+    read(c, input) {  // the control's value as LivePanel.values() gives it, or an Error naming the limit
+      if (c.kind === "dropdown") return c.options[Number(input.value)][1];
+      if (c.kind === "toggle") return input.checked;
+      const v = input.value.trim() === "" ? NaN : Number(input.value);
+      if (!Number.isFinite(v)) return new Error(format(c.not_number, {value: input.value || "(empty)"}));
+      if (c.kind === "slider" && !(c.low <= v && v <= c.high)) return new Error(format(c.outside, {value: v}));
+      return v;
+    }
+
+    changed(c, input, ev) {
+      const v = this.read(c, input);
+      if (v instanceof Error) { this.values[c.name] = input.value; this.refuse(v.message); return; }
+      this.values[c.name] = v;
+      if (c.kind === "slider" && ev && ev.target === input && this.ranges[c.name]) {
+        this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v);
+      }
+      if (c.name === this.spec.selector) this.grey();
+      this.schedule(performance.now());
+    }
+
+    grey() {
+      const sel = this.spec.selector;
+      for (const c of this.spec.controls) {
+        const off = !!(sel && c.applies_to && !c.applies_to.some((x) => JSON.stringify(x) === JSON.stringify(this.values[sel])));
+        this.inputs[c.name].disabled = off;
+        if (this.ranges[c.name]) this.ranges[c.name].disabled = off;
+      }
+    }
+
+    load(saved) {  // settings from the address
+      for (const c of this.spec.controls) {
+        if (!(c.name in saved)) continue;
+        const input = this.inputs[c.name];
+        if (c.kind === "dropdown") input.value = String(c.options.findIndex(([, v]) => String(v) === saved[c.name]));
+        else if (c.kind === "toggle") input.checked = saved[c.name] === "true";
+        else input.value = saved[c.name];
+        const v = this.read(c, input);
+        if (!(v instanceof Error)) {
+          this.values[c.name] = v;
+          if (this.ranges[c.name]) this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v);
+        }
+      }
+      this.grey();
+    }
+
+    reset() {
+      for (const c of this.spec.controls) {
+        const v = this.defaults[c.name], input = this.inputs[c.name];
+        if (c.kind === "dropdown") input.value = String(c.options.findIndex(([, x]) => JSON.stringify(x) === JSON.stringify(v)));
+        else if (c.kind === "toggle") input.checked = !!v;
+        else { input.value = String(v); if (this.ranges[c.name]) this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v); }
+      }
+      this.values = Object.assign({}, this.defaults);
+      this.grey();
+      writeAddress(this.name, null);
+      this.schedule(performance.now());
+    }
+
+    pack() {
+      const by = Object.fromEntries(this.spec.controls.map((c) => [c.name, c]));
+      return this.prog.inputs.map((i) => {
+        const c = by[i.name], v = this.values[i.name];
+        if (c.kind === "dropdown") return c.options.findIndex(([, x]) => JSON.stringify(x) === JSON.stringify(v));
+        if (c.kind === "toggle") return v ? 1 : 0;
+        return Number(v);
+      });
+    }
+
+    schedule(t0) {
+      const job = {t0, values: Object.assign({}, this.values)};
+      if (this.busy) { this.pending = job; return; }
+      this.run(job);
+    }
+
+    run(job) {  // the engine computes one move at a time; the page draws the last result meanwhile
+      this.busy = true;
+      const id = nextId++;
+      const inputs = this.pack();
+      waiting[id] = (m) => this.done(job, m);
+      engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
+    }
+
+    next() {
+      this.busy = false;
+      if (this.pending) { const job = this.pending; this.pending = null; this.run(job); }
+    }
+
+    drawn(f) {  // after a figure's redraw: the theme's colours again (the page's dark mode)
+      f.gd.__themeDark = false;
+      if (window.scaraReader) return window.scaraReader.applyTheme(f.gd);
+    }
+
+    outputs(out, settings) {
+      const v = Object.assign({}, settings);
+      for (const f of this.prog.outputs) v[f.name] = f.size === 1 ? out[f.offset] : out.slice(f.offset, f.offset + f.size);
+      return v;
+    }
+
+    bound(b, v) {
+      if (b.list) return b.list.map((x) => this.bound(x, v));
+      if (b.text !== undefined) return format(b.text, v);
+      if (b.flag !== undefined) return v[b.flag] !== 0;
+      return plain(v[b.field]);
+    }
+
+    done(job, m) {
+      const tc = performance.now();
+      this.next();  // a move made meanwhile starts computing now, while this one is drawn
+      if (m.error) { this.refuse(m.error); return; }
+      const v = this.outputs(m.out, job.values);
+      if (m.status !== 0) {
+        const t = this.prog.refusals[String(m.status)];
+        this.refuse(t === undefined ? "the panel's program returned status " + m.status + ", which it does not declare" : format(t, v));
+        return;
+      }
+      const draws = this.figures.map((f) => {
+        const role = f.spec.role;
+        for (const [key, props] of Object.entries(this.prog.traces[role] || {})) {
+          const i = f.spec.index[key];
+          for (const [prop, b] of Object.entries(props)) f.fig.data[i][prop] = this.bound(b, v);
+          if (this.stale) f.fig.data[i].visible = f.spec.figure.data[i].visible === undefined ? true : f.spec.figure.data[i].visible;
+        }
+        if (this.stale) f.fig.data.forEach((t, i) => { t.visible = f.spec.figure.data[i].visible === undefined ? true : f.spec.figure.data[i].visible; });
+        for (const [path, b] of Object.entries(this.prog.paths[role] || {})) setPath(f.fig.layout, path, this.bound(b, v));
+        const title = this.prog.titles[role];
+        if (title !== undefined) f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: format(title, v)});
+        else if (this.stale) f.fig.layout.title = JSON.parse(JSON.stringify(f.spec.figure.layout.title || {}));
+        f.fig.layout.datarevision = this.seq + 1;
+        return Plotly.react(f.gd, f.fig.data, f.fig.layout).then(() => this.drawn(f));
+      });
+      this.stale = false;
+      this.root.classList.remove("scara-stale");
+      this.message.textContent = "";
+      const rows = this.prog.rows.map(([label, t]) => [label, format(t, v)]);
+      const notes = this.prog.notes.filter(([flag]) => v[flag] !== 0).map(([, t]) => format(t, v));
+      Promise.all(draws).then(() => {
+        this.table(rows);
+        this.notes.replaceChildren(...notes.map((n) => el("div", {text: "⚠ " + n})));
+        this.record({compute_ms: m.compute_ms, draw_ms: performance.now() - tc, total_ms: performance.now() - job.t0});
+        this.address();
+      });
+    }
+
+    table(rows) {
+      const t = el("table", {class: "scara-panel-table"});
+      for (const [a, b] of rows) {
+        const tr = el("tr", {}, t);
+        el("td", {text: a}, tr);
+        el("b", {text: b}, el("td", {}, tr));
+      }
+      this.info.replaceChildren(...(rows.length ? [t] : []));
+    }
+
+    record(timings) {
+      this.seq += 1;
+      this.valuesEl.textContent = JSON.stringify(Object.assign({values: this.values, seq: this.seq}, timings || {}));
+      this.root.dispatchEvent(new CustomEvent("scara-redraw", {detail: {seq: this.seq, timings}}));
+    }
+
+    address() {
+      const changed = {};
+      for (const c of this.spec.controls) {
+        const v = this.values[c.name];
+        if (JSON.stringify(v) !== JSON.stringify(this.defaults[c.name])) changed[c.name] = String(v);
+      }
+      writeAddress(this.name, changed);
+    }
+
+    refuse(text) {
+      this.message.replaceChildren(el("b", {text: this.spec.refused + " "}), document.createTextNode(text));
+      this.notes.replaceChildren();
+      this.info.replaceChildren();
+      if (!this.stale) {
+        this.stale = true;
+        this.root.classList.add("scara-stale");
+        for (const f of this.figures) {
+          f.fig.data.forEach((t) => { t.visible = false; });
+          f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: this.spec.stale_title});
+          Plotly.react(f.gd, f.fig.data, f.fig.layout).then(() => this.drawn(f));
+        }
+      }
+      this.record({});
+    }
+  }
+
+  function start() {
+    document.querySelectorAll("[data-scara-panel]").forEach((root) => {
+      if (root.__scaraPanel) return;
+      const specEl = root.querySelector("script.scara-panel-spec");
+      if (!specEl || !window.Plotly || typeof Worker === "undefined") return;
+      root.__scaraPanel = new PagePanel(root, JSON.parse(specEl.textContent));
+    });
+  }
+  window.scaraFormat = format;  // the tests check the formatter against Python's
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start); else start();
+})();
