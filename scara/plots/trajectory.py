@@ -5,7 +5,10 @@ against the operational one (a kernel-free slider over the number of knots).
 
 Every builder takes a :class:`~scara.trajectory.Trajectory` (or the inputs of
 :func:`~scara.trajectory.plan_path`) and returns a ``plotly.graph_objects.Figure``. Long series are decimated
-to about ``points`` samples for drawing, always keeping the stop instants, so pages stay light.
+to about ``points`` samples for drawing, always keeping the stop instants, so pages stay light. The live waypoint
+editor's figures (:func:`editor_top_figure`, :func:`editor_profiles_figure`) are drawn instead from the outputs of
+its page program (:mod:`scara.programs.trajectory`), which thins the series the same way, and
+:func:`editor_bindings` declares how a move redraws them.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ from ..trajectory import Trajectory, Trapezoidal, plan_path
 from ..trajectory.joint import KINDS, joint_counterpart, path_deviation
 from ._common import AXIS_COLOURS, DASHES, JOINT_COLOURS, PALETTE, as_list, slider
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, FIGURE_BUDGET
-from .panels import FigurePair
+from .panels import Flag, Text
 from .kinematics import top_view_arm
 from .layout import _text_width, finish_layout, stacked_axes
 
@@ -37,7 +40,8 @@ __all__ = [
     "anticipation_slider_figure",
     "joint_profiles_figure",
     "joint_space_series",
-    "joint_space_figure", "EDITOR_TOP_ROLES", "PROFILE_ROLES", "editor_top_figure", "editor_top_update", "editor_profiles_figure", "editor_profiles_update", "editor_pairs",
+    "joint_space_figure", "EDITOR_TOP_ROLES", "PROFILE_ROLES", "editor_labels", "editor_top_figure",
+    "editor_profiles_figure", "editor_bindings", "editor_pairs",
 ]
 
 _VIA_COLOUR = "#E69F00"
@@ -742,58 +746,116 @@ EDITOR_TOP_ROLES = ("arm", "path", "stop point", "via point", "editing")
 #: the roles of :func:`profiles_figure`'s traces, in order: each component of the position, velocity and
 #: acceleration, then phi and the legend entry of the via bands
 PROFILE_ROLES = tuple(f"{kind} {c}" for kind in ("p", "ṗ", "p̈") for c in _COMP) + ("φ", "via overlap")
+#: the editor's title and the name of its ringed waypoint, made from the program's outputs
+EDITOR_TITLE = Text("The edited path seen from above (editing p{edit_point:.0f})")
+EDITOR_MARKER_NAME = Text("editing p{edit_point:.0f}")
+#: the title of the editor's time profiles
+EDITOR_PROFILES_TITLE = "Its position, velocity and acceleration (orange: via overlaps)"
 
 
-def _editor_title(traj, k) -> str:
-    return f"The edited path seen from above (editing {traj.labels[k]})"
+def editor_labels(traj: Trajectory) -> dict:
+    """The waypoint editor's labels, fixed when it opens: one per waypoint (coincident points labelled each, so
+    that moving one apart leaves both named) and where each sits around its marker, placed against the plan it
+    opens on (:func:`_place_waypoint_labels`) and kept there while the points move."""
+    traj = _check(traj)
+    arm = top_view_arm(traj.q0, traj.params)
+    views = _top_views(traj, traj.x[decimate(traj, 300), :2], np.c_[arm.x, arm.y])
+    labels = list(traj.labels)
+    return dict(labels=labels, positions=_place_waypoint_labels(views, labels))
 
 
-def _editor_marker(traj, k) -> dict:
-    pos = traj.waypoints[k]
-    return dict(x=[float(pos[0])], y=[float(pos[1])], name=f"editing {traj.labels[k]}")
+def _editor_points(values, labels, positions, via):
+    name, symbol, colour = (("via point", "diamond", _VIA_COLOUR) if via else
+                            ("stop point", "circle", PALETTE["reference"]))
+    key = "via" if via else "stop"
+    return go.Scatter(x=values[f"{key}_x"], y=values[f"{key}_y"], mode="markers+text", name=name, text=list(labels),
+                      textposition=list(positions), textfont=dict(size=_LABEL_FONT), hovertext=list(labels),
+                      hoverinfo="text", showlegend=True, marker=dict(size=10, symbol=symbol, color=colour,
+                                                    line=dict(width=1, color="white")))
 
 
-def editor_top_figure(state, points: int = 600, height: int = 460) -> go.Figure:
-    """The waypoint editor's top view for ``state`` (``traj``, the plan; ``point``, the index of the waypoint
-    edited): :func:`top_view_figure` with the edited waypoint ringed."""
-    traj, k = state["traj"], state["point"]
-    fig = top_view_figure(traj, points=points, title=_editor_title(traj, k), height=height)
-    fig.add_trace(go.Scatter(mode="markers", marker=dict(size=18, symbol="circle-open", color=_EDITING_COLOUR,
-                                                         line=dict(width=3)), hoverinfo="skip",
-                             **_editor_marker(traj, k)))
+def editor_top_figure(values, labels: dict, height: int = 460) -> go.Figure:
+    """The waypoint editor's top view drawn from its program's outputs ``values``
+    (:func:`scara.programs.trajectory.editor_program`): the arm at ``t = 0``, the path, the stop and via points
+    (each trace holds every waypoint, NaN where a point is of the other kind) labelled as :func:`editor_labels`
+    placed them, and the edited waypoint ringed. The look of :func:`top_view_figure`."""
+    fig = go.Figure()
+    arm = top_view_arm(np.zeros(4), None, name="arm at t = 0", opacity=0.5)
+    fig.add_trace(arm.update(x=values["arm_x"], y=values["arm_y"]))
+    fig.add_trace(go.Scatter(x=values["path_x"], y=values["path_y"], mode="lines", name="path",
+                             line=dict(color=PALETTE["reference"], width=2)))
+    for via in (False, True):
+        fig.add_trace(_editor_points(values, labels["labels"], labels["positions"], via))
+    fig.add_trace(go.Scatter(x=[values["edit_x"]], y=[values["edit_y"]], mode="markers",
+                             name=EDITOR_MARKER_NAME.format(values), hoverinfo="skip",
+                             marker=dict(size=18, symbol="circle-open", color=_EDITING_COLOUR, line=dict(width=3))))
+    finish_layout(fig, EDITOR_TITLE.format(values), height)
+    fig.update_xaxes(title_text="x (m)")
+    fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1)
     return fig
 
 
-def editor_top_update(state, points: int = 600) -> dict:
-    """What changes in :func:`editor_top_figure` after an edit: the data of every trace (by role,
-    ``EDITOR_TOP_ROLES``), the ringed waypoint's name and the title."""
-    traj, k = state["traj"], state["point"]
-    top = top_view_series(traj, points=points)
-    arm = top_view_arm(traj.q0, traj.params)
-    traces = dict(zip(EDITOR_TOP_ROLES, (dict(x=arm.x, y=arm.y), dict(x=top["path"][0], y=top["path"][1]),
-                                         top["stop"], top["via"], _editor_marker(traj, k))))
-    return dict(traces=traces, title=_editor_title(traj, k))
+def _editor_bands(n):
+    """The fields of the profiles' shaded bands, in the order of the shapes: ``(x0, x1, on)`` per band (``on``
+    None for the grey bands of every other segment, always shown)."""
+    grey = [(f"band_{g}_x0", f"band_{g}_x1", None) for g in range(n // 2)]
+    return grey + [(f"overlap_{i}_x0", f"overlap_{i}_x1", f"overlap_{i}_on") for i in range(1, n - 1)]
 
 
-def editor_profiles_figure(state, points: int = 500, height: int = 620) -> go.Figure:
-    """The waypoint editor's time profiles of the plan ``state["traj"]`` (:func:`profiles_figure`)."""
-    return profiles_figure(state["traj"], points=points, height=height,
-                           title="Its position, velocity and acceleration (orange: via overlaps)")
+def editor_profiles_figure(values, n: int, height: int = 620) -> go.Figure:
+    """The waypoint editor's time profiles drawn from its program's outputs ``values`` for a plan of ``n``
+    waypoints: :func:`profiles_figure`'s traces and bands, the band over a via point's overlap hidden while the
+    point is a stop."""
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.04, row_heights=[0.3, 0.3, 0.3, 0.1])
+    series = ("prof_x", "prof_y", "prof_z", "prof_vx", "prof_vy", "prof_vz", "prof_ax", "prof_ay", "prof_az")
+    for row in range(1, 4):
+        for c in range(3):
+            fig.add_trace(go.Scatter(x=values["prof_t"], y=values[series[3 * (row - 1) + c]], mode="lines",
+                                     name=f"p_{_COMP[c]}", legendgroup=_COMP[c], showlegend=row == 1,
+                                     line=dict(color=AXIS_COLOURS[c], width=1.6, dash=DASHES[c])), row=row, col=1)
+    fig.add_trace(go.Scatter(x=values["prof_t"], y=values["prof_phi"], mode="lines", name="φ",
+                             line=dict(color=AXIS_COLOURS[3], width=1.6, dash=DASHES[3])), row=4, col=1)
+    stacked_axes(fig, ("p (m)", "ṗ (m/s)", "p̈ (m/s²)", "φ (°)"))
+    fig.update_yaxes(nticks=3, row=4, col=1)
+    _band_legend(fig)
+    shapes = []
+    for x0, x1, on in _editor_bands(n):
+        shape = dict(type="rect", xref="x", yref="paper", x0=values[x0], x1=values[x1], y0=0, y1=1, layer="below",
+                     fillcolor="#000000" if on is None else _VIA_COLOUR, opacity=0.05 if on is None else 0.25,
+                     line=dict(width=0))
+        if on is not None:
+            shape["visible"] = bool(values[on] != 0)
+        shapes.append(shape)
+    return finish_layout(fig, EDITOR_PROFILES_TITLE, height, shapes=shapes)
 
 
-def editor_profiles_update(state, points: int = 500) -> dict:
-    """What changes in :func:`editor_profiles_figure` after an edit: the curves (by role, ``PROFILE_ROLES``)
-    and the segments' bands."""
-    traj = state["traj"]
-    traces = {role: dict(x=x, y=y) for role, (x, y) in zip(PROFILE_ROLES, profiles_series(traj, points=points))}
-    return dict(traces=traces, layout=dict(shapes=segment_shapes(traj)))
+def editor_bindings(n: int, profiles: bool = True) -> dict:
+    """How the editor's figures are drawn from its program's outputs, for a plan of ``n`` waypoints: the
+    ``traces``, ``paths`` and ``titles`` of its :class:`~scara.plots.panels.PageProgram`."""
+    series = ("prof_x", "prof_y", "prof_z", "prof_vx", "prof_vy", "prof_vz", "prof_ax", "prof_ay", "prof_az",
+              "prof_phi")
+    traces = {"top view": {"arm": {"x": "arm_x", "y": "arm_y"}, "path": {"x": "path_x", "y": "path_y"},
+                           "stop point": {"x": "stop_x", "y": "stop_y"}, "via point": {"x": "via_x", "y": "via_y"},
+                           "editing": {"x": ("edit_x",), "y": ("edit_y",), "name": EDITOR_MARKER_NAME}}}
+    titles = {"top view": EDITOR_TITLE}
+    paths = {}
+    if profiles:
+        traces["profiles"] = {role: {"x": "prof_t", "y": y} for role, y in zip(PROFILE_ROLES, series)}
+        paths["profiles"] = {}
+        for k, (x0, x1, on) in enumerate(_editor_bands(n)):
+            paths["profiles"][f"shapes.{k}.x0"] = x0
+            paths["profiles"][f"shapes.{k}.x1"] = x1
+            if on is not None:
+                paths["profiles"][f"shapes.{k}.visible"] = Flag(on)
+    return dict(traces=traces, paths=paths, titles=titles)
 
 
-def editor_pairs(profiles: bool = True, top_points: int = 600, profile_points: int = 500) -> tuple:
-    """The waypoint editor's figure pairs: the top view and, with ``profiles``, the time profiles."""
-    top = FigurePair("top view", lambda s: editor_top_figure(s, top_points), lambda s: editor_top_update(s, top_points),
-                     EDITOR_TOP_ROLES)
-    if not profiles:
-        return (top,)
-    return top, FigurePair("profiles", lambda s: editor_profiles_figure(s, profile_points),
-                           lambda s: editor_profiles_update(s, profile_points), PROFILE_ROLES)
+def editor_pairs(labels: dict, n: int, profiles: bool = True) -> tuple:
+    """The waypoint editor's figures: ``(builders, roles)`` for :func:`~scara.plots.panels.program_panel`, the top
+    view (:func:`editor_top_figure`) and, with ``profiles``, the time profiles (:func:`editor_profiles_figure`)."""
+    builders = {"top view": lambda values: editor_top_figure(values, labels)}
+    roles = {"top view": EDITOR_TOP_ROLES}
+    if profiles:
+        builders["profiles"] = lambda values: editor_profiles_figure(values, n)
+        roles["profiles"] = PROFILE_ROLES
+    return builders, roles

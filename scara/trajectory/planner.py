@@ -13,6 +13,11 @@ so the corner is rounded and the speed never drops to zero there. The orientatio
 timing laws: segment ``j`` adds ``(phi_{j+1} - phi_j) s_j / L_j``.
 
 All segment boundaries are whole numbers of samples, so every stop point falls exactly on a sample.
+
+The planning itself is compiled (:mod:`scara.trajectory._plan`): :func:`plan_path` checks the types and shapes of
+its inputs, packs them as a float vector, and runs the kernels that check and resolve the plan, sample it and
+check it against the workspace, the very kernels the live waypoint editor runs on every move (in Jupyter and,
+translated, in the book's pages). :class:`Trajectory` keeps the planned path as that vector (``plan_vector``).
 """
 from __future__ import annotations
 
@@ -24,18 +29,15 @@ import numpy as np
 
 from ..errors import (ScaraError, ShapeError, UnreachableError, as_array, check_flag, check_index, check_number,
                       check_positive)
-from ..kinematics import check_reachable, ikine, is_reachable
+from ..kinematics import _elbow_sign, check_reachable, ikine
 from ..params import ScaraParams
 from .._manipulability import manipulability
-from .paths import GEOMETRY_TOL, Arc, Line, _fmt
-from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, in_time_order, times
+from . import _plan as K
+from ._plan import MAX_SAMPLES
+from .paths import Arc, Line, _fmt
+from .timing import DEFAULT_BLEND_FRACTION, Trapezoidal, times
 
-__all__ = ["Waypoint", "Trajectory", "plan_path", "start_orientation", "MAX_SAMPLES"]
-
-#: largest number of samples of a planned trajectory (``total / dt + 1``), checked before any work: each sample
-#: holds ``t``, ``x``, ``xd``, ``xdd`` (104 bytes), so the limit caps a plan at about 200 MB; the reference
-#: scenario has 70 001 samples at 1 ms
-MAX_SAMPLES = 2_000_000
+__all__ = ["Waypoint", "Trajectory", "plan_path", "plan_spec", "start_orientation", "MAX_SAMPLES"]
 
 
 @dataclass(frozen=True)
@@ -88,16 +90,23 @@ def start_orientation(point, p=None, elbow: int = -1) -> float:
 
 
 def _samples(value: float, dt: float, what: str) -> int:
-    with np.errstate(over="ignore"):
-        periods = float(value) / float(dt)
-    if not periods <= MAX_SAMPLES:
-        raise ScaraError(f"{what} = {value:g} s is {periods:.4g} sampling periods dt = {dt:g} s, more than a plan "
-                         f"may hold (MAX_SAMPLES = {MAX_SAMPLES:g} samples); use a longer dt or a shorter plan")
-    n = round(periods)
-    if abs(value / dt - n) > 1e-6:
-        raise ScaraError(f"{what} = {value:g} s is not a whole number of sampling periods dt = {dt:g} s "
-                         f"({value / dt:.6g} periods); use a multiple of dt so that stop points fall on samples")
+    """``value`` (s) as a whole number of sampling periods ``dt`` (:func:`~scara.trajectory._plan.whole_samples`),
+    or :class:`ScaraError` naming ``what``."""
+    code, n = K.whole_samples(float(value), float(dt))
+    if code != 0:
+        raise ScaraError(_samples_message(what, value, dt, code))
     return int(n)
+
+
+def _samples_message(what: str, value: float, dt: float, code: int) -> str:
+    """The message of :func:`~scara.trajectory._plan.whole_samples`'s ``code`` for ``value`` (s) named ``what``."""
+    if code == 1:
+        with np.errstate(over="ignore"):
+            periods = float(value) / float(dt)
+        return (f"{what} = {value:g} s is {periods:.4g} sampling periods dt = {dt:g} s, more than a plan "
+                f"may hold (MAX_SAMPLES = {MAX_SAMPLES:g} samples); use a longer dt or a shorter plan")
+    return (f"{what} = {value:g} s is not a whole number of sampling periods dt = {dt:g} s "
+            f"({value / dt:.6g} periods); use a multiple of dt so that stop points fall on samples")
 
 
 class Trajectory:
@@ -122,55 +131,31 @@ class Trajectory:
         for k, v in _built.items():
             setattr(self, k, v)
         n_samples = self._total_samples + 1
-        self.t = np.arange(n_samples) * self.dt
-        self.x, self.xd, self.xdd = self.evaluate(self.t)
-        for arr in (self.t, self.x, self.xd, self.xdd):
+        self.t = np.empty(n_samples)
+        self.x, self.xd, self.xdd = np.empty((n_samples, 4)), np.empty((n_samples, 4)), np.empty((n_samples, 4))
+        K.sample_plan(self._plan, self.t, self.x, self.xd, self.xdd)
+        for arr in (self.t, self.x, self.xd, self.xdd, self._plan):
             arr.flags.writeable = False
         self._cache = {}
 
+    @property
+    def plan_vector(self) -> np.ndarray:
+        """The planned path packed as a float vector (read-only), the layout of :mod:`scara.programs.path`:
+        what :func:`~scara.programs.path.sample_plan` samples."""
+        return self._plan
+
     # -- evaluation ----------------------------------------------------------------------------------
     def evaluate(self, t):
-        """``x, xd, xdd`` (each (n, 4)) at arbitrary times ``t`` (n,) in s, by eq. 4.56 of the module docstring.
+        """``x, xd, xdd`` (each (n, 4)) at arbitrary times ``t`` (n,) in s, by eq. 4.56 of the module docstring
+        (:func:`~scara.trajectory._plan.plan_at`, the kernel that samples the trajectory).
 
         Before 0 the arm is at the first waypoint; after the last segment it rests at the last one. A NaN or
         infinite time raises :class:`~scara.NonFiniteError`.
         """
-        t = times(t, "t").reshape(-1)
-        unsorted = in_time_order(self.evaluate, t)
-        if unsorted is not None:
-            return unsorted
+        t = np.ascontiguousarray(times(t, "t").reshape(-1), dtype=float)
         n = t.size
-        x = np.empty((n, 4))
-        xd = np.zeros((n, 4))
-        xdd = np.zeros((n, 4))
-        # component views (4, n) of the row-major outputs: every update below works on one component
-        X, Xd, Xdd = x.T, xd.T, xdd.T
-        # the displacement of every segment completed by time t: piecewise constant, built by np.repeat
-        done = np.zeros((len(self.segments) + 1, 4))
-        ends = np.searchsorted(t, self.segment_end, side="left")
-        order = np.argsort(ends, kind="stable")
-        for r, j in enumerate(order, start=1):
-            seg = self.segments[j]
-            done[r, :3] = done[r - 1, :3] + (seg.end - seg.start)
-            done[r, 3] = done[r - 1, 3] + (self.phi_waypoints[j + 1] - self.phi_waypoints[j])
-        counts = np.diff(np.r_[0, ends[order], n])
-        start = np.r_[self.waypoints[0], self.phi_waypoints[0]]
-        for c in range(4):
-            X[c] = np.repeat(start[c] + done[:, c], counts)
-        for j, (seg, law) in enumerate(zip(self.segments, self.laws)):
-            t0 = self.segment_start[j]
-            i0 = int(np.searchsorted(t, t0, side="left"))
-            i1 = int(ends[j])
-            if i1 <= i0:
-                continue
-            s, sd, sdd = law.evaluate_sorted(t[i0:i1] - t0)
-            seg.accumulate(s, sd, sdd, X[:3, i0:i1], Xd[:3, i0:i1], Xdd[:3, i0:i1])
-            dphi = self.phi_waypoints[j + 1] - self.phi_waypoints[j]
-            if dphi != 0.0:
-                g = dphi / seg.length
-                X[3, i0:i1] += g * s
-                Xd[3, i0:i1] += g * sd
-                Xdd[3, i0:i1] += g * sdd
+        x, xd, xdd = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 4))
+        K.evaluate_plan(self._plan, t, x, xd, xdd)
         return x, xd, xdd
 
     def replan(self, **changes) -> "Trajectory":
@@ -220,33 +205,13 @@ class Trajectory:
         The minimum of ``|p_e(t) - p_via|`` over the overlap of the two segments (outside it the arm is on
         one of the straight lines, farther away), found on the samples and refined between the neighbouring
         samples with :meth:`evaluate` (four passes of 65 samples each, which fix the time to about 1e-9 s).
-        Zero for a via point lying on a straight continuation (only the speed blends there).
+        Zero for a via point lying on a straight continuation (only the speed blends there). Computed by
+        :func:`~scara.trajectory._plan.corner_distance`.
         """
         out = {}
         for i in np.flatnonzero(self.via):
-            pv = self.waypoints[i]
-            before, after = self.segments[i - 1], self.segments[i]
-            straight = (before.kind == after.kind == "line"
-                        and np.linalg.norm(np.cross(before.tangent, after.tangent)) < 1e-12
-                        and before.tangent @ after.tangent > 0)
-            a, b = self.segment_start[i], self.segment_end[i - 1]
-            k0, k1 = int(round(a / self.dt)), int(round(b / self.dt))
-            d = np.linalg.norm(self.x[k0:k1 + 1, :3] - pv, axis=1)
-            k = k0 + int(np.argmin(d))
-            lo, hi = max(a, self.t[k] - self.dt), min(b, self.t[k] + self.dt)
-            fun, arg = float(d[k - k0]), float(self.t[k])
-            for _ in range(4):  # each pass narrows the bracket around the best of 65 exact samples 32-fold
-                s = np.linspace(lo, hi, 65)
-                dd = np.linalg.norm(self.evaluate(s)[0][:, :3] - pv, axis=1)
-                j = int(np.argmin(dd))
-                if dd[j] < fun:
-                    fun, arg = float(dd[j]), float(s[j])
-                step = (hi - lo) / 64
-                lo, hi = max(lo, s[j] - step), min(hi, s[j] + step)
-            best = (fun, arg)
-            if straight:  # a straight continuation runs through the via point: the distance is exactly 0
-                best = (0.0, best[1])
-            out[self.labels[i]] = (float(best[0]), float(best[1]))
+            d, when = K.corner_distance(self._plan, self.x, int(i))
+            out[self.labels[i]] = (float(d), float(when))
         return out
 
     def segment_table(self) -> list[dict]:
@@ -269,12 +234,10 @@ class Trajectory:
         minimum (value, time, segment, point), corner distances at the via points."""
         if "summary" in self._cache:
             return dict(self._cache["summary"])
-        sp = self.speed()
-        acc = np.linalg.norm(self.xdd[:, :3], axis=1)
-        ks, ka = int(np.argmax(sp)), int(np.argmax(acc))
-        w = self.manipulability()
-        kw = int(np.argmin(w))
-        q = self.joints()
+        q = self.joints()  # raises for a sample out of reach of this trajectory's arm
+        ext = np.empty(K.EXTREMES)
+        K.plan_extremes(self._plan, self.x, self.xd, self.xdd, ext)
+        ks, ka, kw = int(ext[K.X_SPEED_K]), int(ext[K.X_ACC_K]), int(ext[K.X_W_K])
         qd = np.gradient(q, self.dt, axis=0)
         out = dict(
             duration=float(self.total), samples=int(self.t.size), dt=float(self.dt),
@@ -282,11 +245,11 @@ class Trajectory:
             waypoints=len(self.labels), segments=len(self.segments),
             via_points=[self.labels[i] for i in np.flatnonzero(self.via)],
             path_length=float(sum(s.length for s in self.segments)),
-            max_speed=float(sp[ks]), max_speed_time=float(self.t[ks]),
-            max_acceleration=float(acc[ka]), max_acceleration_time=float(self.t[ka]),
+            max_speed=float(ext[K.X_SPEED]), max_speed_time=float(self.t[ks]),
+            max_acceleration=float(ext[K.X_ACC]), max_acceleration_time=float(self.t[ka]),
             max_phi_rate=float(np.max(np.abs(self.xd[:, 3]))),
             max_joint_speed=np.max(np.abs(qd), axis=0).tolist(),
-            min_manipulability=float(w[kw]), min_manipulability_time=float(self.t[kw]),
+            min_manipulability=float(ext[K.X_W]), min_manipulability_time=float(self.t[kw]),
             min_manipulability_segment=self._segment_names(float(self.t[kw])),
             min_manipulability_point=self.x[kw, :3].tolist(),
             corner_distances={k: v[0] for k, v in self.corner_distances().items()},
@@ -355,33 +318,74 @@ def plan_path(waypoints, durations, *, blends=None, arcs=None, phi=None, total=N
     >>> traj.t.shape, traj.x.shape, float(traj.x[-1, 0])
     ((3001,), (3001, 4), 0.5)
     """
-    dt = check_positive(dt, "dt")
-    check = check_flag(check, "check")
-    wps, labels, seg_labels, pos = _waypoints(waypoints)
-    nT = _segment_samples(durations, seg_labels, dt)
-    T = nT * dt  # the durations the samples realise (equal to the inputs up to rounding)
-    blends, tc = _blend_times(blends, T)
-    ant, nA = _anticipation_samples(wps, seg_labels, T, dt)
-    arcs, segments = _segments(pos, arcs, labels, seg_labels)
-    laws = _timing_laws(segments, T, tc, seg_labels)
-    phis = _orientations(wps, pos, phi, p, elbow)
-    k0, k1, k_end, k_total = _schedule(nT, nA, total, dt)
+    v = _inputs(waypoints, durations, blends, arcs, phi, total, dt, p, elbow, check)
+    wps, labels, seg_labels, pos, arcs, arc_in = v.wps, v.labels, v.seg_labels, v.pos, v.arcs, v.arc_in
+    T_in, tc_in, blends, phi, total_f, p_checked, dt, check = v.T, v.tc, v.blends, v.phi, v.total, v.p, v.dt, v.check
+    spec = v.spec
+    plan = np.empty(K.plan_size(len(wps)))
+    info = np.zeros(K.INFO_SIZE)
+    code = K.build_plan(spec, plan, info)
+    if code != K.PLAN_OK:
+        _raise_plan_error(code, info, wps, labels, seg_labels, pos, arcs, arc_in, T_in, tc_in, dt, phi, total_f,
+                          p_checked, elbow)
 
-    p_checked = ScaraParams.resolve(p)
+    n, m = len(wps), len(seg_labels)
+    seg = [K.plan_segment(n, j) for j in range(m)]
+    way = [K.plan_waypoint(n, i) for i in range(n)]
+    nT = np.array([plan[q + K.Q_K1] - plan[q + K.Q_K0] for q in seg]).astype(np.int64)
+    nA = np.array([plan[v + K.V_NA] for v in way]).astype(np.int64)
+    k0 = np.array([plan[q + K.Q_K0] for q in seg]).astype(np.int64)
+    k1 = np.array([plan[q + K.Q_K1] for q in seg]).astype(np.int64)
+    k_end, k_total = int(plan[K.P_K_END]), int(plan[K.P_K])
+    T = nT * dt  # the durations the samples realise (equal to the inputs up to rounding)
+    phis = [float(plan[v + K.V_PHI]) for v in way]
+    segments = [_segment(pos[j], pos[j + 1], arcs.get(j), j) for j in range(m)]
+    laws = [Trapezoidal(sg.length, T[j], DEFAULT_BLEND_FRACTION * T[j] if np.isnan(tc_in[j]) else tc_in[j])
+            for j, sg in enumerate(segments)]
     q0 = ikine(np.r_[pos[0], phis[0]], p_checked, elbow=elbow)
+    ant = np.array([w.anticipation for w in wps])
     built = dict(
         dt=dt, params=p_checked, elbow=elbow, q0=q0,
         waypoints=pos, labels=labels, via=ant > 0, anticipations=nA * dt, phi_waypoints=np.array(phis),
         segments=segments, segment_kinds=[s.kind for s in segments], segment_labels=seg_labels, laws=laws,
         durations=nT * dt, blends=np.array([law.blend for law in laws]),
         segment_start=k0 * dt, segment_end=k1 * dt, motion_end=k_end * dt,
-        total=k_total * dt, rest=(k_total - k_end) * dt, _total_samples=k_total,
+        total=k_total * dt, rest=(k_total - k_end) * dt, _total_samples=k_total, _plan=plan,
     )
     traj = Trajectory(waypoints=wps, durations=list(T), blends=blends, arcs=arcs, phi=phi, total=total, dt=dt,
                       p=p, elbow=elbow, check=check, _built=built)
     if check:
         _check_in_reach(traj, p_checked)
     return traj
+
+
+def _inputs(waypoints, durations, blends, arcs, phi, total, dt, p, elbow, check):
+    """The inputs of :func:`plan_path` checked (types, shapes, signs) and packed as the spec of
+    :mod:`scara.programs.path` (``.spec``), with the objects the planner keeps."""
+    from types import SimpleNamespace  # noqa: PLC0415
+
+    dt = check_positive(dt, "dt")
+    check = check_flag(check, "check")
+    wps, labels, seg_labels, pos = _waypoints(waypoints)
+    T_in = _durations(durations, seg_labels)
+    blends, tc_in = _blend_inputs(blends, len(seg_labels))
+    arcs, arc_in = _arc_inputs(arcs, pos, seg_labels)
+    if phi is not None:
+        phi = check_number(phi, "phi", "a number of radians")
+    total_f = None if total is None else check_positive(total, "total")
+    p_checked = ScaraParams.resolve(p)
+    elbow_sign = _elbow_sign(elbow)
+    spec = _spec(wps, T_in, tc_in, arc_in, phi, total_f, dt, p_checked, elbow_sign, check)
+    return SimpleNamespace(wps=wps, labels=labels, seg_labels=seg_labels, pos=pos, T=T_in, tc=tc_in, blends=blends,
+                           arcs=arcs, arc_in=arc_in, phi=phi, total=total_f, p=p_checked, elbow=elbow, dt=dt,
+                           check=check, spec=spec)
+
+
+def plan_spec(waypoints, durations, *, blends=None, arcs=None, phi=None, total=None, dt: float = 1e-3, p=None,
+              elbow: int = -1, check: bool = True) -> np.ndarray:
+    """The inputs of :func:`plan_path` (the same arguments) checked for their types, shapes and signs and packed
+    as the spec of :mod:`scara.programs.path`, the vector :func:`~scara.trajectory._plan.build_plan` plans from."""
+    return _inputs(waypoints, durations, blends, arcs, phi, total, dt, p, elbow, check).spec
 
 
 def _waypoints(waypoints):
@@ -398,55 +402,33 @@ def _waypoints(waypoints):
     return wps, labels, seg_labels, np.array([w.position for w in wps])
 
 
-def _segment_samples(durations, seg_labels, dt):
-    """Each segment's duration as a whole number of samples (checked positive)."""
+def _durations(durations, seg_labels):
+    """Each segment's duration (s), checked positive (the kernel checks it is a whole number of samples)."""
     m = len(seg_labels)
     if np.ndim(durations) != 1 or len(durations) != m:
         raise ShapeError(f"durations must have one entry per segment ({m} for {m + 1} waypoints), got {durations!r}")
     T = as_array(durations, "durations", (m,))
-    nT = np.empty(m, dtype=np.int64)
     for j in range(m):
         check_positive(T[j], f"duration of segment {seg_labels[j]}")
-        nT[j] = _samples(T[j], dt, f"duration of segment {seg_labels[j]}")
-    return nT
+    return np.array(T, dtype=float)
 
 
-def _blend_times(blends, T):
-    """The blend time ``t_c`` of each segment's trapezoid (default a third of its duration)."""
-    m = len(T)
+def _blend_inputs(blends, m):
+    """The blends as given (a list, None for the default) and as numbers (NaN for the default: a third of the
+    duration), each checked positive."""
     if blends is not None and (isinstance(blends, (str, bytes, dict)) or np.ndim(blends) != 1):
         raise ShapeError(f"blends must be a sequence with one blend time (s, or None) per segment ({m}), "
                          f"got {blends!r}")
     blends = [None] * m if blends is None else list(blends)
     if len(blends) != m:
         raise ShapeError(f"blends must have one entry per segment ({m}), got {len(blends)}")
-    tc = np.array([DEFAULT_BLEND_FRACTION * T[j] if b is None else check_positive(b, f"blends[{j}]")
-                   for j, b in enumerate(blends)])
+    tc = np.array([math.nan if b is None else check_positive(b, f"blends[{j}]") for j, b in enumerate(blends)])
     return blends, tc
 
 
-def _anticipation_samples(wps, seg_labels, T, dt):
-    """The anticipation (s) of every waypoint and its number of samples; only inner waypoints may be via
-    points, and an anticipation must be shorter than both segments it joins."""
-    n = len(wps)
-    ant = np.array([w.anticipation for w in wps])
-    for i in (0, n - 1):
-        if ant[i] > 0:
-            raise ScaraError(f"{wps[i].label} is the {'first' if i == 0 else 'last'} waypoint and cannot be a via "
-                             f"point (anticipation = {ant[i]:g} s): the arm starts and ends at rest")
-    nA = np.zeros(n, dtype=np.int64)
-    for i in range(1, n - 1):
-        if ant[i] > 0:
-            if ant[i] >= T[i - 1] or ant[i] >= T[i]:
-                raise ScaraError(f"anticipation at via point {wps[i].label} = {ant[i]:g} s must be shorter than "
-                                 f"both segments it joins: {seg_labels[i - 1]} lasts {T[i - 1]:g} s and "
-                                 f"{seg_labels[i]} lasts {T[i]:g} s")
-            nA[i] = _samples(ant[i], dt, f"anticipation at {wps[i].label}")
-    return ant, nA
-
-
-def _segments(pos, arcs, labels, seg_labels):
-    """The geometric path of each segment: a :class:`Line`, or an :class:`Arc` where ``arcs`` asks for one."""
+def _arc_inputs(arcs, pos, seg_labels):
+    """The ``arcs`` dict checked (keys are segment indices) and, per segment, None (a line), the point an arc
+    passes through (3,), or a ready :class:`Arc`."""
     m = len(seg_labels)
     if arcs is not None and not isinstance(arcs, dict):
         raise ScaraError(f"arcs must be a dict {{segment index: point (3,) or Arc}}, got {arcs!r}")
@@ -457,87 +439,123 @@ def _segments(pos, arcs, labels, seg_labels):
         except ScaraError as exc:
             raise ScaraError(f"arcs keys are segment indices 0..{m - 1} (segment j joins waypoints j and j+1), "
                              f"got {key!r}") from exc
-    segments = []
+    out = []
     for j in range(m):
-        a, b = pos[j], pos[j + 1]
-        if np.linalg.norm(b - a) <= GEOMETRY_TOL:
-            raise ScaraError(f"repeated point: {labels[j + 1]} = {labels[j]} = {_fmt(a)}; consecutive waypoints must "
-                             f"differ (segment {seg_labels[j]} would have zero length)")
-        try:
-            segments.append(_segment(a, b, arcs.get(j), j))
-        except ScaraError as exc:
-            raise type(exc)(f"segment {seg_labels[j]}: {exc}") from exc
-    return arcs, segments
+        arc = arcs.get(j)
+        if arc is not None and not isinstance(arc, Arc):
+            try:
+                arc = as_array(arc, f"arcs[{j}] (a point the arc passes through)", (3,))
+            except ScaraError as exc:
+                raise type(exc)(f"segment {seg_labels[j]}: {exc}") from exc
+        out.append(arc)
+    return arcs, out
+
+
+def _spec(wps, T, tc, arcs, phi, total, dt, p, elbow, check):
+    """The plan's inputs packed as the spec of :mod:`scara.programs.path`."""
+    n = len(wps)
+    spec = np.zeros(K.spec_size(n))
+    spec[[K.S_N, K.S_DT, K.S_TOTAL, K.S_PHI, K.S_ELBOW, K.S_CHECK]] = (
+        n, dt, math.nan if total is None else total, math.nan if phi is None else phi, elbow, float(check))
+    spec[[K.S_A1, K.S_A2, K.S_D0, K.S_D3_MIN, K.S_D3_MAX]] = p.a1, p.a2, p.d0, p.d3_min, p.d3_max
+    for i, w in enumerate(wps):
+        o = K.spec_waypoint(n, i)
+        spec[o:o + 3] = w.position
+        spec[o + K.W_ANT] = w.anticipation
+        spec[o + K.W_HAS_PHI] = 0.0 if w.phi is None else 1.0
+        spec[o + K.W_PHI] = 0.0 if w.phi is None else w.phi
+    for j, arc in enumerate(arcs):
+        o = K.spec_segment(n, j)
+        spec[o + K.G_DURATION] = T[j]
+        spec[o + K.G_BLEND] = tc[j]
+        if arc is None:
+            spec[o + K.G_ARC] = K.ARC_NONE
+        elif isinstance(arc, Arc):
+            spec[o + K.G_ARC] = K.ARC_GIVEN
+            d = o + K.G_DATA
+            for off, v in ((K.GA_START, arc.start), (K.GA_END, arc.end), (K.GA_CENTRE, arc.centre), (K.GA_U, arc._u),
+                           (K.GA_V, arc._v)):
+                spec[d + off:d + off + 3] = v
+            spec[d + K.GA_RADIUS], spec[d + K.GA_ANGLE], spec[d + K.GA_LENGTH] = arc.radius, arc.angle, arc.length
+        else:
+            spec[o + K.G_ARC] = K.ARC_THROUGH
+            spec[o + K.G_DATA:o + K.G_DATA + 3] = arc
+    return spec
 
 
 def _segment(a, b, arc, j):
+    """The path primitive of a segment the kernels accepted: a line, the arc through a point, or the given arc."""
     if arc is None:
         return Line(a, b)
     if isinstance(arc, Arc):
-        for name, got, want in (("start", arc.start, a), ("end", arc.end, b)):
-            if np.linalg.norm(got - want) > GEOMETRY_TOL:
-                raise ScaraError(f"its {name} {_fmt(got)} is not the waypoint {_fmt(want)}")
         return arc
     return Arc.through(a, as_array(arc, f"arcs[{j}] (a point the arc passes through)", (3,)), b)
 
 
-def _timing_laws(segments, T, tc, seg_labels):
-    """The trapezoidal timing law of every segment (Siciliano et al. 2009, (4.8)-(4.9); chapter 3)."""
-    laws = []
-    for j, seg in enumerate(segments):
+def _raise_plan_error(code, info, wps, labels, seg_labels, pos, arcs, arc_in, T_in, tc_in, dt, phi, total, p, elbow):
+    """Raise the error of :func:`~scara.trajectory._plan.build_plan`'s ``code`` (the numbers in ``info``)."""
+    F = dict(zip(K.INFO.names, info))
+    i, j = int(F["w_a"]), int(F["s_a"])
+    if code in (K.DURATION_TOO_MANY, K.DURATION_NOT_WHOLE):
+        raise ScaraError(_samples_message(f"duration of segment {seg_labels[j]}", F["value"], dt,
+                                          1 if code == K.DURATION_TOO_MANY else 2))
+    if code in (K.VIA_FIRST, K.VIA_LAST):
+        raise ScaraError(f"{wps[i].label} is the {'first' if i == 0 else 'last'} waypoint and cannot be a via "
+                         f"point (anticipation = {F['ant']:g} s): the arm starts and ends at rest")
+    if code == K.ANTICIPATION_TOO_LONG:
+        raise ScaraError(f"anticipation at via point {wps[i].label} = {F['ant']:g} s must be shorter than "
+                         f"both segments it joins: {seg_labels[i - 1]} lasts {F['dur_a']:g} s and "
+                         f"{seg_labels[i]} lasts {F['dur_b']:g} s")
+    if code in (K.ANTICIPATION_TOO_MANY, K.ANTICIPATION_NOT_WHOLE):
+        raise ScaraError(_samples_message(f"anticipation at {wps[i].label}", F["value"], dt,
+                                          1 if code == K.ANTICIPATION_TOO_MANY else 2))
+    if code == K.REPEATED_POINT:
+        raise ScaraError(f"repeated point: {labels[j + 1]} = {labels[j]} = {_fmt(pos[j])}; consecutive waypoints "
+                         f"must differ (segment {seg_labels[j]} would have zero length)")
+    if code in (K.GIVEN_ARC_START, K.GIVEN_ARC_END):
+        name, got, want = (("start", arcs[j].start, pos[j]) if code == K.GIVEN_ARC_START
+                           else ("end", arcs[j].end, pos[j + 1]))
+        raise ScaraError(f"segment {seg_labels[j]}: its {name} {_fmt(got)} is not the waypoint {_fmt(want)}")
+    if 8 <= code <= 19:  # the geometry kernels' codes: the primitive raises its own message
         try:
-            laws.append(Trapezoidal(seg.length, T[j], tc[j]))
+            _segment(pos[j], pos[j + 1], arc_in[j], j)
+        except ScaraError as exc:
+            raise type(exc)(f"segment {seg_labels[j]}: {exc}") from exc
+    if code in (K.LAW_BLEND, K.LAW_NOT_FINITE):
+        T = round(T_in[j] / dt) * dt
+        try:
+            Trapezoidal(_segment(pos[j], pos[j + 1], arc_in[j], j).length, T,
+                        DEFAULT_BLEND_FRACTION * T if np.isnan(tc_in[j]) else tc_in[j])
         except ScaraError as exc:
             raise ScaraError(f"segment {seg_labels[j]}: {exc}") from exc
-    return laws
-
-
-def _orientations(wps, pos, phi, p, elbow):
-    """The orientation at every waypoint: its own ``phi`` if it has one, else the one before it; the first is
-    the waypoint's, or ``phi``, or the start configuration's."""
-    if phi is not None:
-        phi = check_number(phi, "phi", "a number of radians")
-    if wps[0].phi is not None:
-        phi0 = wps[0].phi
-    else:
-        phi0 = start_orientation(pos[0], p, elbow) if phi is None else phi
-    phis = [phi0]
-    for w in wps[1:]:
-        phis.append(w.phi if w.phi is not None else phis[-1])
-    return phis
-
-
-def _schedule(nT, nA, total, dt):
-    """Start and end sample of every segment (each starts its anticipation before the previous one ends), the
-    last motion sample and the length of the series."""
-    m = len(nT)
-    k0 = np.zeros(m, dtype=np.int64)
-    for j in range(1, m):
-        k0[j] = k0[j - 1] + nT[j - 1] - nA[j]
-    k1 = k0 + nT
-    k_end = int(k1.max())
-    if k_end + 1 > MAX_SAMPLES:
-        raise ScaraError(f"the motion lasts {k_end * dt:g} s, {k_end + 1} samples at dt = {dt:g} s, more than a plan "
-                         f"may hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter plan")
-    if total is None:
-        return k0, k1, k_end, k_end
-    total_f = check_positive(total, "total")
-    k_total = _samples(total_f, dt, "total")
-    if k_total + 1 > MAX_SAMPLES:
-        raise ScaraError(f"total = {total_f:g} s is {k_total + 1} samples at dt = {dt:g} s, more than a plan may hold "
-                         f"(MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter total")
-    if k_total < k_end:
-        raise ScaraError(f"total = {total_f:g} s is shorter than the motion, which ends at {k_end * dt:g} s")
-    return k0, k1, k_end, k_total
+    if code in (K.START_OUTSIDE_ANNULUS, K.START_OUTSIDE_STROKE):
+        if wps[0].phi is None and phi is None:
+            start_orientation(pos[0], p, elbow)
+        ikine(np.r_[pos[0], wps[0].phi if wps[0].phi is not None else phi], p, elbow=elbow)
+    if code == K.MOTION_TOO_MANY:
+        raise ScaraError(f"the motion lasts {F['motion_end_at']:g} s, {int(F['samples'])} samples at dt = {dt:g} s, "
+                         f"more than a plan may hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter "
+                         f"plan")
+    if code in (K.TOTAL_TOO_MANY, K.TOTAL_NOT_WHOLE):
+        raise ScaraError(_samples_message("total", total, dt, 1 if code == K.TOTAL_TOO_MANY else 2))
+    if code == K.TOTAL_SAMPLES_TOO_MANY:
+        raise ScaraError(f"total = {total:g} s is {int(F['samples'])} samples at dt = {dt:g} s, more than a plan may "
+                         f"hold (MAX_SAMPLES = {MAX_SAMPLES:g}); use a longer dt or a shorter total")
+    if code == K.TOTAL_TOO_SHORT:
+        raise ScaraError(f"total = {total:g} s is shorter than the motion, which ends at {F['motion_end_at']:g} s")
+    raise ScaraError(f"the planner refused the plan with code {code}")  # pragma: no cover - every code is above
 
 
 def _check_in_reach(traj, p):
     """Every sample in the workspace (the message names the first one out and its segment), and every waypoint
     too: a via point's corner is rounded, so the path may stay in reach while the point itself is not, and the
-    arm would be asked to pass near a point it could never reach."""
-    ok = is_reachable(traj.x, p)
-    if not ok.all():
-        k = int(np.argmin(ok))
+    arm would be asked to pass near a point it could never reach (:func:`~scara.trajectory._plan.plan_reach`)."""
+    info = np.zeros(K.INFO_SIZE)
+    code = K.plan_reach(traj._plan, traj.x, info)
+    if code == 0:
+        return
+    if code < K.WAYPOINT_OUTSIDE_ANNULUS:
+        k = int(info[K.I_SAMPLE])
         tk = float(traj.t[k])
         try:
             check_reachable(traj.x[k], p, label="its point")
@@ -546,5 +564,5 @@ def _check_in_reach(traj, p):
             why = f": {exc}"
         raise UnreachableError(f"the path leaves the workspace at t = {tk:.3f} s (sample {k}) on segment "
                                f"{traj._segment_names(tk)}{why}")
-    for label, point in zip(traj.labels, traj.waypoints):
-        check_reachable(point, p, label=f"waypoint {label}")
+    i = int(info[K.I_W_A])
+    check_reachable(traj.waypoints[i], p, label=f"waypoint {traj.labels[i]}")

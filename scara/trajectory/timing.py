@@ -13,6 +13,10 @@ The blend may not exceed half the duration (``t_c = T/2`` is the triangular prof
 
 The acceleration is piecewise constant and taken right-continuous: at a switching instant it already has
 its new value, so a forward-Euler step from that sample integrates the velocity exactly.
+
+The law is written once, as two compiled kernels that :class:`Trapezoidal` and the planner's sampling
+(:mod:`scara.trajectory._plan`) both call: :func:`trapezoid_check` (the blend clipped to ``T/2``, ``v_c`` and ``a``,
+or the code of what is wrong) and :func:`trapezoid_at` (``s, sdot, sddot`` at one time).
 """
 from __future__ import annotations
 
@@ -21,9 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._compile import kernel
 from ..errors import NonFiniteError, ScaraError, ShapeError, check_positive
 
-__all__ = ["Trapezoidal", "trapezoidal", "DEFAULT_BLEND_FRACTION", "MAX_SEGMENT_SAMPLES", "times"]
+__all__ = ["Trapezoidal", "trapezoidal", "DEFAULT_BLEND_FRACTION", "MAX_SEGMENT_SAMPLES", "times",
+           "trapezoid_check", "trapezoid_at", "LAW_OK", "LAW_BLEND_TOO_LONG", "LAW_NOT_FINITE"]
 
 #: largest number of sampling periods ``T / dt`` of one profile (:meth:`Trapezoidal.minimum_time`): a
 #: trajectory is stored sample by sample, and the planner allows at most ``MAX_SAMPLES`` of them in all
@@ -51,6 +57,52 @@ def times(tau, name: str = "tau") -> np.ndarray:
 
 #: blend time as a fraction of the duration when none is given (cruise speed 1.5 L / T)
 DEFAULT_BLEND_FRACTION = 1.0 / 3.0
+
+#: :func:`trapezoid_check`'s codes: a valid law, a blend longer than half the duration, a speed or an
+#: acceleration that is not finite (the planner returns the same numbers for a segment's law)
+LAW_OK = 0
+LAW_BLEND_TOO_LONG = 21
+LAW_NOT_FINITE = 22
+
+
+@kernel
+def trapezoid_check(L, T, tc):
+    """``(code, blend, v_c, a)`` of the law covering ``L`` (m) in ``T`` (s) with the blend ``tc`` (s), all three
+    positive: the blend is refused (:data:`LAW_BLEND_TOO_LONG`) beyond ``T/2`` (with a relative tolerance of
+    1e-12) and clipped to it otherwise; ``v_c = L / (T - t_c)`` and ``a = v_c / t_c`` (eqs. 4.8-4.9) must be finite
+    (:data:`LAW_NOT_FINITE` otherwise)."""
+    if tc > T / 2 * (1 + 1e-12):
+        return LAW_BLEND_TOO_LONG, tc, 0.0, 0.0
+    blend = min(tc, T / 2)
+    v = L / (T - blend)
+    a = v / blend
+    if not (math.isfinite(v) and math.isfinite(a)):
+        return LAW_NOT_FINITE, blend, v, a
+    return LAW_OK, blend, v, a
+
+
+@kernel
+def trapezoid_at(tau, L, T, tc, v, a):
+    """``(s, sdot, sddot)`` of the trapezoidal law (eqs. 4.8-4.9) at ``tau`` (s since the start), for the blend
+    ``tc``, cruise speed ``v`` and acceleration ``a`` of :func:`trapezoid_check`: ``0, 0, 0`` before the start,
+    ``L, 0, 0`` from ``T`` on, the acceleration right-continuous at every switching instant."""
+    if tau < 0.0:
+        return 0.0, 0.0, 0.0
+    if tau >= T:
+        return L, 0.0, 0.0
+    if tau < tc:
+        return 0.5 * a * tau * tau, a * tau, a
+    if tau < T - tc:
+        return v * (tau - 0.5 * tc), v, 0.0
+    r = T - tau
+    return L - 0.5 * a * r * r, a * r, -a
+
+
+@kernel
+def _trapezoid_batch(tau, L, T, tc, v, a, s, sd, sdd):
+    """:func:`trapezoid_at` at every entry of ``tau`` (n,), written into ``s, sd, sdd`` (n,)."""
+    for i in range(tau.shape[0]):
+        s[i], sd[i], sdd[i] = trapezoid_at(tau[i], L, T, tc, v, a)
 
 
 def in_time_order(evaluate, t: np.ndarray):
@@ -94,16 +146,12 @@ class Trapezoidal:
         L = check_positive(self.length, "length")
         T = check_positive(self.duration, "duration")
         tc = check_positive(self.blend, "blend")
-        if tc > T / 2 * (1 + 1e-12):
-            raise ScaraError(f"blend = {tc:g} s is longer than half the duration T/2 = {T / 2:g} s; a trapezoidal "
-                             f"profile needs 0 < blend <= T/2")
+        code, blend, v, a = trapezoid_check(L, T, tc)
+        if code != LAW_OK:
+            raise ScaraError(law_message(code, L, T, tc, blend, v, a))
         object.__setattr__(self, "length", L)
         object.__setattr__(self, "duration", T)
-        object.__setattr__(self, "blend", min(tc, T / 2))
-        if not (math.isfinite(self.cruise_speed) and math.isfinite(self.acceleration)):
-            raise ScaraError(f"length = {L:g} m over duration = {T:g} s with blend = {self.blend:g} s needs a speed "
-                             f"{self.cruise_speed:g} m/s and an acceleration {self.acceleration:g} m/s^2 that are not "
-                             f"finite: the length is too large for the duration")
+        object.__setattr__(self, "blend", blend)
 
     @property
     def cruise_speed(self) -> float:
@@ -148,53 +196,37 @@ class Trapezoidal:
         return cls(L, T, tc)
 
     def evaluate(self, tau):
-        """``s, sdot, sddot`` at times ``tau`` (s since the segment's start; scalar or array of any shape).
+        """``s, sdot, sddot`` at times ``tau`` (s since the segment's start; scalar or array of any shape), by
+        :func:`trapezoid_at`.
 
         Before the start the values are ``0, 0, 0``; after the end ``L, 0, 0``. A NaN or infinite time raises
         :class:`~scara.NonFiniteError`.
         """
         tau = times(tau)
-        L, T, tc = self.length, self.duration, self.blend
-        v = self.cruise_speed
-        a = self.acceleration
-        acc = (tau >= 0) & (tau < tc)
-        dec = (tau >= T - tc) & (tau < T)
-        cru = (tau >= tc) & (tau < T - tc)
-        done = tau >= T
-        r = T - tau
-        s = np.where(acc, 0.5 * a * tau * tau,
-                     np.where(cru, v * (tau - 0.5 * tc), np.where(dec, L - 0.5 * a * r * r, np.where(done, L, 0.0))))
-        sd = np.where(acc, a * tau, np.where(cru, v, np.where(dec, a * r, 0.0)))
-        sdd = np.where(acc, a, np.where(dec, -a, 0.0))
-        return s, sd, sdd
+        flat = np.ascontiguousarray(tau, dtype=float).reshape(-1)
+        s, sd, sdd = np.empty_like(flat), np.empty_like(flat), np.empty_like(flat)
+        _trapezoid_batch(flat, self.length, self.duration, self.blend, self.cruise_speed, self.acceleration, s, sd,
+                         sdd)
+        return s.reshape(tau.shape), sd.reshape(tau.shape), sdd.reshape(tau.shape)
 
     def evaluate_sorted(self, tau):
-        """:meth:`evaluate` for a sorted 1-D array ``tau`` within ``[0, T)``: the phases are contiguous
-        slices, filled without masks (the fast path of trajectory sampling). A NaN or infinite time raises
+        """:meth:`evaluate` for a sorted 1-D array ``tau`` within ``[0, T)`` (kept for callers that know their
+        times are sorted; the law is evaluated time by time either way). A NaN or infinite time raises
         :class:`~scara.NonFiniteError`."""
-        tau = times(tau)
-        T, tc = self.duration, self.blend
-        v, a = self.cruise_speed, self.acceleration
-        ia = int(np.searchsorted(tau, tc, side="left"))
-        ib = max(ia, int(np.searchsorted(tau, T - tc, side="left")))
-        s = np.empty_like(tau)
-        sd = np.empty_like(tau)
-        sdd = np.zeros_like(tau)
-        ta = tau[:ia]
-        sdd[:ia] = a
-        sd[:ia] = a * ta
-        s[:ia] = 0.5 * a * ta * ta
-        sd[ia:ib] = v
-        s[ia:ib] = v * (tau[ia:ib] - 0.5 * tc)
-        r = T - tau[ib:]
-        sdd[ib:] = -a
-        sd[ib:] = a * r
-        s[ib:] = self.length - 0.5 * a * r * r
-        return s, sd, sdd
+        return self.evaluate(np.asarray(times(tau), dtype=float).reshape(-1))
 
     def switching_times(self) -> np.ndarray:
         """The instants (since the start) where ``sddot`` jumps: ``[0, t_c, T - t_c, T]`` (s)."""
         return np.array([0.0, self.blend, self.duration - self.blend, self.duration])
+
+
+def law_message(code, L, T, tc, blend, v, a) -> str:
+    """The message of :func:`trapezoid_check`'s ``code`` for the law ``L, T, tc`` (its outputs ``blend, v, a``)."""
+    if code == LAW_BLEND_TOO_LONG:
+        return (f"blend = {tc:g} s is longer than half the duration T/2 = {T / 2:g} s; a trapezoidal profile needs "
+                f"0 < blend <= T/2")
+    return (f"length = {L:g} m over duration = {T:g} s with blend = {blend:g} s needs a speed {v:g} m/s and an "
+            f"acceleration {a:g} m/s^2 that are not finite: the length is too large for the duration")
 
 
 def trapezoidal(tau, length, duration, blend=None):

@@ -1,21 +1,30 @@
-"""Live panel of chapter 3 (trajectory planning): a waypoint editor. Jupyter only.
+"""Live panel of chapter 3 (trajectory planning): a waypoint editor.
 
 Pick a waypoint and move it with the x/y/z sliders, make it a via point or a stop, change a segment's
-duration or a via point's anticipation: the path is re-planned with :func:`~scara.trajectory.plan_path` and
-redrawn in place at once. An invalid or unreachable edit shows the planner's message and marks the figures
-stale; the plan keeps its last valid state, so picking another waypoint or undoing the edit goes on from there.
+duration or a via point's anticipation: the path is re-planned and redrawn in place at once. Every move is one
+run of the page program :func:`~scara.programs.trajectory.editor_program`, which plans with the kernels of
+:func:`~scara.trajectory.plan_path` (so the path drawn is the one the planner gives) and runs the same in the
+book's pages. An invalid or unreachable edit shows the planner's message and marks the figures stale; in Jupyter
+the plan keeps its last valid state, so picking another waypoint or undoing the edit goes on from there (the
+program's ``data`` holds that plan and is updated after every accepted move).
 """
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
 from ..errors import ScaraError, check_flag, check_number
-from ..plots.panels import Control, Panel
-from ..plots.trajectory import editor_pairs
+from ..plots.panels import Control, Flag, PageProgram, Pick, Text, program_panel
+from ..plots.trajectory import editor_bindings, editor_labels, editor_pairs
+from ..programs import trajectory as program
+from ..programs.path import plan_spec
 from ..trajectory import Waypoint, plan_path, reference_plan
+from ..trajectory import _plan as K
+from ..trajectory._plan import G_DURATION, MAX_SAMPLES, SPEC_HEAD, SPEC_SEGMENT, SPEC_WAYPOINT, W_ANT, W_X, W_Y, W_Z
 from ._common import LivePanel
 
-__all__ = ["WaypointEditor", "waypoint_editor"]
+__all__ = ["WaypointEditor", "waypoint_editor", "waypoint_editor_declaration"]
 
 #: samples drawn per curve: enough for the eye, few enough for the browser to redraw at once
 TOP_POINTS, PROFILE_POINTS = 600, 500
@@ -62,27 +71,37 @@ def _checked_plan(plan) -> dict:
     return plan
 
 
-class WaypointEditor:
-    """The editor's state (``plan``: keyword arguments of :func:`plan_path`) and its :class:`LivePanel`.
+class EditorState:
+    """The editor's state (``plan``: keyword arguments of :func:`plan_path`) and its declaration (the panel as
+    data, without widgets: :class:`WaypointEditor` adds its :class:`LivePanel`).
 
     ``plan`` defaults to the reference scenario of chapter 3 with ``total=None`` (the series ends when the
     motion does, so a longer edit is never refused for overrunning 70 s); any valid plan of two waypoints or
-    more opens. ``editor.trajectory`` is the last valid plan; ``editor.panel.last_error`` the message shown, or
-    None; ``editor.declaration`` the panel as data. The sliders' ranges cover the plan's own values (positions
-    within the arm's reach, durations and anticipations from 0.1 s), so loading a waypoint never clamps it.
+    more opens. ``editor.trajectory`` is the last valid plan (planned on demand); ``editor.panel.last_error``
+    the message shown, or None; ``editor.declaration`` the panel as data, its page program
+    ``editor.declaration.page``. The sliders' ranges cover the plan's own values (positions within the arm's
+    reach, durations and anticipations from 0.1 s), so loading a waypoint never clamps it.
     """
 
     def __init__(self, plan: dict | None = None, profiles: bool = True):
         profiles = check_flag(profiles, "profiles")
         plan = _checked_plan(plan)
-        self.trajectory = plan_path(**plan)  # an invalid plan raises here, with the planner's message
+        traj = plan_path(**plan)  # an invalid plan raises here, with the planner's message
         self.plan = plan
+        self._trajectory = traj
         self.profiles = profiles
-        self.declaration = self._declaration()
-        self.panel = LivePanel(self.declaration)
+        self.declaration = self._declaration(traj)
 
-    def _declaration(self) -> Panel:
-        """The editor as data: its controls, set for the plan's first via point (or first waypoint)."""
+    @property
+    def trajectory(self):
+        """The last valid plan, a :class:`~scara.trajectory.Trajectory` (planned by :func:`plan_path`)."""
+        if self._trajectory is None:
+            self._trajectory = plan_path(**self.plan)
+        return self._trajectory
+
+    def _declaration(self, traj):
+        """The editor as data: its controls, set for the plan's first via point (or first waypoint), and its
+        page program."""
         wps, durations = self.plan["waypoints"], self.plan["durations"]
         labels = [w.label for w in wps]
         segs = [f"{labels[j]}->{labels[j + 1]}" for j in range(len(wps) - 1)]
@@ -104,54 +123,162 @@ class WaypointEditor:
             Control("duration", "slider", "duration (s)", durations[seg0], min(0.1, *durations),
                     max(20.0, *durations), 0.1, unit="s"),
         )
-        return Panel("waypoint editor", "Waypoint editor: edit the path, watch it re-planned", controls,
-                     self._compute, editor_pairs(self.profiles, TOP_POINTS, PROFILE_POINTS), _summary,
-                     react=self._react)
+        n = len(wps)
+        # the accepted edit is the plan the next move starts from (carry), and picking a waypoint or a segment
+        # loads its values from that plan (react): declared here, done alike by both front ends
+        w_at = lambda field: program.D_SPEC + SPEC_HEAD + field  # noqa: E731 - waypoint i at + 6 i
+        g_at = program.D_SPEC + SPEC_HEAD + SPEC_WAYPOINT * n + G_DURATION
+        react = {"point": {"x": Pick(w_at(W_X), SPEC_WAYPOINT, "point"), "y": Pick(w_at(W_Y), SPEC_WAYPOINT, "point"),
+                           "z": Pick(w_at(W_Z), SPEC_WAYPOINT, "point"),
+                           "via": Pick(w_at(W_ANT), SPEC_WAYPOINT, "point", "flag"),
+                           "anticipation": Pick(w_at(W_ANT), SPEC_WAYPOINT, "point", "positive")},
+                 "segment": {"duration": Pick(g_at, SPEC_SEGMENT, "segment")}}
+        prog = PageProgram(
+            kernel=program.editor_program, inputs=program.EDITOR_INPUTS,
+            data=program.editor_data(plan_spec(self.plan), TOP_POINTS, PROFILE_POINTS),
+            outputs=program.editor_outputs(n, TOP_POINTS, PROFILE_POINTS), refusals=editor_refusals(),
+            **editor_bindings(n, self.profiles), rows=_rows(labels), notes=_NOTES,
+            carry=("spec_out", program.D_SPEC), react=react)
+        builders, roles = editor_pairs(editor_labels(traj), n, self.profiles)
+        panel = program_panel("waypoint editor", "Waypoint editor: edit the path, watch it re-planned", controls,
+                              prog, builders, widget="waypoint_editor", roles=roles)
+        self._run = panel.compute
+        return dataclasses.replace(panel, compute=self._compute)
 
     # ------------------------------------------------------------------------------------------------------
-    def _react(self, name: str, settings: dict) -> dict:
-        """A waypoint or segment picked: its current values, for the sliders (one redraw follows)."""
-        if name == "point":
-            w = self.plan["waypoints"][settings["point"]]
-            out = dict(zip("xyz", w.position), via=w.via)
-            if w.via:
-                out["anticipation"] = w.anticipation
-            return out
-        if name == "segment":
-            return {"duration": self.plan["durations"][settings["segment"]]}
-        return {}
-
     def _compute(self, v):
-        """Apply the sliders to the picked waypoint and segment and re-plan; the plan changes only if the
-        planner accepts the edit."""
+        """Run the program for the sliders (the picked waypoint and segment edited; an accepted edit is carried
+        into the program's ``data``) and keep :attr:`plan` the plan the next moves start from."""
+        values = self._run(v)
         plan = dict(self.plan, waypoints=list(self.plan["waypoints"]), durations=list(self.plan["durations"]))
         w = plan["waypoints"][v["point"]]
         plan["waypoints"][v["point"]] = w.replace(position=(v["x"], v["y"], v["z"]),
                                                   anticipation=v["anticipation"] if v["via"] else 0.0)
         plan["durations"][v["segment"]] = v["duration"]
-        traj = plan_path(**plan)
-        self.plan, self.trajectory = plan, traj
-        return dict(traj=traj, point=v["point"], summary=traj.summary())
-
-    def _ipython_display_(self):
-        self.panel._ipython_display_()
+        if plan["waypoints"] != self.plan["waypoints"] or plan["durations"] != self.plan["durations"]:
+            self.plan, self._trajectory = plan, None
+        return values
 
 
-def _summary(s):
-    """The editor's table and notes: when the motion ends, its peaks, its closest approach to a singularity."""
-    summ = s["summary"]
-    corner = ", ".join(f"{name}: {1000 * v:.1f} mm" for name, v in summ["corner_distances"].items()) or "none"
-    rows = [("motion ends at (s)", f"{summ['motion_end']:.1f}"),
-            ("peak speed (cm/s)", f"{100 * summ['max_speed']:.2f}"),
-            ("peak acceleration (cm/s²)", f"{100 * summ['max_acceleration']:.2f}"),
-            ("min manipulability (m²)",
-             f"{summ['min_manipulability']:.4f} at {summ['min_manipulability_time']:.1f} s"),
-            ("corner distances at the via points", corner)]
-    notes = []
-    if summ["min_manipulability"] < 0.01:
-        notes.append(f"The path passes close to a singular configuration (w = {summ['min_manipulability']:.2g} m² "
-                     f"at {summ['min_manipulability_time']:.1f} s): the joints must move fast there.")
-    return rows, notes
+
+class WaypointEditor(EditorState):
+    """The editor's state (:class:`EditorState`: ``plan``, ``trajectory``, ``declaration``) and its
+    :class:`LivePanel` (``panel``); displayed as a cell's last expression, it shows the panel."""
+
+    def __init__(self, plan: dict | None = None, profiles: bool = True):
+        super().__init__(plan, profiles)
+        self.panel = LivePanel(self.declaration)
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return self.panel._repr_mimebundle_(include=include, exclude=exclude)
+
+
+def waypoint_editor_declaration(plan: dict | None = None, profiles: bool = True):
+    """The waypoint editor's panel as data (a :class:`~scara.plots.panels.Panel` with its page program) on
+    ``plan`` (default: the reference scenario of chapter 3 with ``total=None``), without widgets. Its
+    ``compute`` keeps the last accepted plan, as the Jupyter panel does."""
+    return EditorState(plan, profiles).declaration
+
+
+# --------------------------------------------------------------------------------------------------
+# the summary and the refusals, as texts of the program's outputs
+# --------------------------------------------------------------------------------------------------
+def _rows(labels) -> tuple:
+    """The editor's table: when the motion ends, its peaks, its closest approach to a singularity and to each
+    inner waypoint (0 at a stop point, which the path passes through)."""
+    inner = range(1, len(labels) - 1)
+    safe = [lab.replace("{", "{{").replace("}", "}}") for lab in labels]
+    corners = ", ".join(f"{safe[i]}: {{corner_{i}:.1f}} mm" for i in inner) or "none"
+    return (("motion ends at (s)", Text("{motion_end:.1f}")),
+            ("peak speed (cm/s)", Text("{peak_speed_cm:.2f}")),
+            ("peak acceleration (cm/s²)", Text("{peak_acc_cm:.2f}")),
+            ("min manipulability (m²)", Text("{w_min:.4f} at {w_min_time:.1f} s")),
+            ("corner distances (0 at a stop point)", Text(corners)))
+
+
+_NOTES = ((Flag("near_singular"),
+           Text("The path passes close to a singular configuration (w = {w_min:.2g} m² at {w_min_time:.1f} s): "
+                "the joints must move fast there.")),)
+
+_SEG = "p{s_a:.0f}->p{s_a1:.0f}"
+_A, _B, _C = ("[{%sx:.4g}, {%sy:.4g}, {%sz:.4g}]" % (c, c, c) for c in "abc")
+_POINT3 = "(x, y, z) = ({px:.4g}, {py:.4g}, {pz:.4g}) m"
+_POINT4 = _POINT3 + ", φ = {phi_deg:.4g}°"
+_ANNULUS = ("its distance from the joint-1 axis r = {r:.10g} m is outside the annulus |a1 - a2| = {r_min:g} m "
+            "<= r <= a1 + a2 = {r_max:g} m")
+_STROKE = ("p_z = {z_exact:.10g} m needs d3 = d0 - p_z = {d3:.10g} m, outside the stroke d3_min = {d3_min:g} m "
+           "<= d3 <= d3_max = {d3_max:g} m")
+_MAX = f"{MAX_SAMPLES:g}"
+_WHERE = (_SEG, _SEG + " and p{s_b:.0f}->p{s_b1:.0f}",
+          _SEG + " and p{s_b:.0f}->p{s_b1:.0f} and p{s_c:.0f}->p{s_c1:.0f}",
+          _SEG + " and p{s_b:.0f}->p{s_b1:.0f} and p{s_c:.0f}->p{s_c1:.0f} and p{s_d:.0f}->p{s_d1:.0f}",
+          _SEG + " and p{s_b:.0f}->p{s_b1:.0f} and … and p{s_d:.0f}->p{s_d1:.0f}", "at rest after " + _SEG)
+
+
+def _samples_texts(what):
+    return (f"{what} = {{value:g}} s is {{periods:.4g}} sampling periods dt = {{dt:g}} s, more than a plan may hold "
+            f"(MAX_SAMPLES = {_MAX} samples); use a longer dt or a shorter plan",
+            f"{what} = {{value:g}} s is not a whole number of sampling periods dt = {{dt:g}} s ({{periods:.6g}} "
+            "periods); use a multiple of dt so that stop points fall on samples")
+
+
+def editor_refusals() -> dict:
+    """The text of every code the editor's program may return: the planner's messages (those of
+    :func:`~scara.trajectory.plan_path`, shown with points in the panel's units as JupyterLab shows them),
+    waypoints and segments named by index (``p3``, ``p3->p4``)."""
+    t = {}
+    t[K.DURATION_TOO_MANY], t[K.DURATION_NOT_WHOLE] = _samples_texts("duration of segment " + _SEG)
+    for code, which in ((K.VIA_FIRST, "first"), (K.VIA_LAST, "last")):
+        t[code] = (f"p{{w_a:.0f}} is the {which} waypoint and cannot be a via point (anticipation = {{ant:g}} s): "
+                   "the arm starts and ends at rest")
+    t[K.ANTICIPATION_TOO_LONG] = ("anticipation at via point p{w_a:.0f} = {ant:g} s must be shorter than both "
+                                  "segments it joins: " + _SEG + " lasts {dur_a:g} s and p{s_b:.0f}->p{s_b1:.0f} "
+                                  "lasts {dur_b:g} s")
+    t[K.ANTICIPATION_TOO_MANY], t[K.ANTICIPATION_NOT_WHOLE] = _samples_texts("anticipation at p{w_a:.0f}")
+    t[K.REPEATED_POINT] = ("repeated point: p{w_b:.0f} = p{w_a:.0f} = " + _A + "; consecutive waypoints must "
+                           "differ (segment p{w_a:.0f}->p{w_b:.0f} would have zero length)")
+    seg = "segment " + _SEG + ": "
+    t[K.LINE_OVERFLOW] = seg + "the line has a length that overflows; the points must be finite and reasonably sized (m)"
+    t[K.ARC_OVERFLOW] = (seg + "the circle through start " + _A + ", via " + _B + " and end " + _C + " cannot be computed: the "
+             "points are too far apart and the arithmetic overflows")
+    t[K.ARC_COLLINEAR] = (seg + "no circle passes through start " + _A + ", via " + _B + " and end " + _C + ": the points are "
+             "collinear or two of them coincide")
+    t[K.ARC_NORMAL_ZERO] = seg + "the normal of an arc's plane must be a non-zero vector, got [0, 0, 0]"
+    t[K.ARC_START_OFF_PLANE] = seg + "the arc's start " + _A + " is not on its circle: it lies off the plane through its centre"
+    t[K.ARC_END_OFF_PLANE] = seg + "the arc's end " + _C + " is not on its circle: it lies off the plane through its centre"
+    t[K.ARC_RADIUS_OVERFLOW] = (seg + "the arc from start " + _A + " to end " + _C + " has a radius that overflows; the points must be "
+             "reasonably sized (m)")
+    t[K.ARC_RADIUS_TOO_SMALL] = seg + "an arc needs a positive radius (start " + _A + ", via " + _B + ", end " + _C + ")"
+    t[K.ARC_START_OFF_CIRCLE] = seg + "the arc's start " + _A + " is not on its circle (tolerance 1e-09 m)"
+    t[K.ARC_END_OFF_CIRCLE] = seg + "the arc's end " + _C + " is not on its circle (tolerance 1e-09 m)"
+    t[K.ARC_SAME_ENDS] = seg + "an arc needs distinct ends, but start = end = " + _A + " (a repeated point)"
+    t[K.LAW_BLEND] = (seg + "blend = {blend:g} s is longer than half the duration T/2 = {half:g} s; a trapezoidal "
+                      "profile needs 0 < blend <= T/2")
+    t[K.LAW_NOT_FINITE] = (seg + "length = {value:g} m over duration = {dur_a:g} s with blend = {blend:g} s needs a "
+                           "speed {speed:g} m/s and an acceleration {acc:g} m/s^2 that are not finite: the length "
+                           "is too large for the duration")
+    t[K.GIVEN_ARC_START] = seg + "its start " + _A + " is not the waypoint " + _B
+    t[K.GIVEN_ARC_END] = seg + "its end " + _A + " is not the waypoint " + _B
+    t[K.START_OUTSIDE_ANNULUS] = "point " + _POINT4 + " is unreachable: " + _ANNULUS
+    t[K.START_OUTSIDE_STROKE] = "point " + _POINT4 + " is unreachable: " + _STROKE
+    t[K.MOTION_TOO_MANY] = ("the motion lasts {motion_end_at:g} s, {samples:.0f} samples at dt = {dt:g} s, more "
+                            f"than a plan may hold (MAX_SAMPLES = {_MAX}); use a longer dt or a shorter plan")
+    t[K.TOTAL_TOO_MANY], t[K.TOTAL_NOT_WHOLE] = _samples_texts("total")
+    t[K.TOTAL_SAMPLES_TOO_MANY] = ("total = {total:g} s is {samples:.0f} samples at dt = {dt:g} s, more than a plan "
+                                   f"may hold (MAX_SAMPLES = {_MAX}); use a longer dt or a shorter total")
+    t[K.TOTAL_TOO_SHORT] = "total = {total:g} s is shorter than the motion, which ends at {motion_end_at:g} s"
+    for where, text in enumerate(_WHERE):
+        for why, reason in enumerate((_ANNULUS, _STROKE)):
+            t[K.SAMPLE_OUT + 2 * where + why] = ("the path leaves the workspace at t = {t_out:.3f} s (sample "
+                                                 "{sample:.0f}) on segment " + text + ": its point " + _POINT4 +
+                                                 " is unreachable: " + reason)
+    t[K.SAMPLE_NOT_FINITE] = ("the path leaves the workspace at t = {t_out:.3f} s (sample {sample:.0f}): its point "
+                              "is not finite")
+    t[K.WAYPOINT_OUTSIDE_ANNULUS] = "waypoint p{w_a:.0f} " + _POINT3 + " is unreachable: " + _ANNULUS
+    t[K.WAYPOINT_OUTSIDE_STROKE] = "waypoint p{w_a:.0f} " + _POINT3 + " is unreachable: " + _STROKE
+    t[program.SUMMARY_OUTSIDE_ANNULUS] = "sample {sample:.0f}: point " + _POINT4 + " is unreachable: " + _ANNULUS
+    t[program.SUMMARY_OUTSIDE_STROKE] = "sample {sample:.0f}: point " + _POINT4 + " is unreachable: " + _STROKE
+    return {code: Text(text) for code, text in t.items()}
 
 
 def waypoint_editor(plan: dict | None = None, profiles: bool = True) -> WaypointEditor:
