@@ -10,18 +10,19 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..dynamics import TORQUE_TERMS, inertia, inertia_split
+from ..dynamics import TORQUE_TERMS, inertia
 from ..errors import ScaraError, as_vector, check_count
 from ._common import DASHES, JOINT_COLOURS, JOINT_UNITS, LOG_FLOOR, f32, slider, thin
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, MAX_SWEEP, FIGURE_BUDGET
-from .panels import FigurePair
+from .panels import Text
 from .layout import finish_layout, stacked_axes
 from ..params import ScaraParams
+from ..programs.dynamics import B_FIELDS, inertia_values
 
 __all__ = [
     "TERM_COLOURS", "TERM_LABELS", "TERM_DASHES", "TERM_PATTERNS", "JOINT_UNITS", "torque_share_figure",
     "torque_terms_figure", "payload_torque_figure", "payload_slider_figure", "energy_figure", "window_max",
-    "inertia_figure", "inertia_slider_figure", "inertia_panel_figure", "inertia_pair",
+    "inertia_figure", "inertia_slider_figure", "inertia_panel_figure", "INERTIA_TRACES", "INERTIA_TITLE",
 ]
 
 #: one colour per torque term (Okabe-Ito), the same in every figure of the chapter
@@ -230,23 +231,59 @@ def energy_figure(t, energy: dict, title: str = "Energy of the released arm", ta
     return finish_layout(fig, title, height)
 
 
-def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
-    """Left: ``B(q)`` as an annotated heat map; right: each diagonal entry split into links, rotors and
-    payload (stacked horizontal bars). Used by the live panel."""
-    parts = inertia_split(q, p)
-    B = inertia(q, p)
-    d_links, d_rot, d_pay = (np.diag(parts[k]) for k in ("links", "rotors", "payload"))
+#: the text of each entry of ``B`` in the inertia figure, row by row (3 significant digits)
+B_TEXTS = tuple(Text("{" + name + ":.3g}") for name in B_FIELDS)
+
+
+def _bar_name(k: str) -> str:
+    """The legend name of the bar of the term ``k`` in the inertia figure."""
+    return TERM_LABELS[k].replace(" (5 kg)", "")
+
+
+#: the terms of the bars of the diagonal's make-up, with the output of :mod:`scara.programs.dynamics` each draws
+_DIAGONAL_BARS = (("links", "d_links"), ("rotors", "d_rotors"), ("payload", "d_payload"))
+#: how the inertia panel draws its program's outputs (:mod:`scara.programs.dynamics`), keyed by trace name (a
+#: :class:`~scara.plots.panels.PageProgram`'s ``traces``): the shades of ``B`` and the top of their colour
+#: scale, the entries' texts, the three bars of the diagonal; :func:`inertia_figure` draws the same fields
+INERTIA_TRACES = {"inertia": {
+    "B(q) shade": {"z": "shade", "zmax": "cmax"},
+    "B(q)": {"text": B_TEXTS},
+    **{_bar_name(k): {"x": field} for k, field in _DIAGONAL_BARS},
+}}
+#: the inertia panel's title, from the payload and theta2 sliders
+INERTIA_TITLE = Text("B(q) with a {payload:g} kg payload at θ2 = {theta2:.0f}°")
+
+
+def text_colours(shade) -> list:
+    """The colour of each entry's text over its square of shade ``shade`` (16,): white on the darkest 40 % of the
+    range of shades, near-black elsewhere."""
+    shade = np.asarray(shade)
+    dark = shade > shade.min() + 0.6 * (shade.max() - shade.min())
+    return np.where(dark, "white", "#222222").tolist()
+
+
+def inertia_figure(q, p=None, title: str | None = None, values: dict | None = None) -> go.Figure:
+    """Left: ``B(q)`` as a grid of shaded squares with its entries written in them; right: each diagonal entry
+    split into links, rotors and payload (stacked horizontal bars). Drawn from the outputs of
+    :func:`scara.programs.dynamics.inertia_core` (``values``; by default those of ``q`` and the robot ``p`` with its
+    own payload, :func:`~scara.programs.dynamics.inertia_values`): the fields of :data:`INERTIA_TRACES`, so that
+    the live panel, which draws the same fields, updates it in place.
+
+    The shades are a heat map under a text trace named ``"B(q)"`` (its hover names each entry): a heat map's
+    colours are its top-level ``z`` and ``zmax``, which a panel's bindings set."""
+    if values is None:
+        values = inertia_values(as_vector(q, "q"), ScaraParams.resolve(p))
     fig = make_subplots(rows=1, cols=2, column_widths=[0.5, 0.5], horizontal_spacing=0.14,
                         subplot_titles=["B(q) (kg m², kg m, kg)", "diagonal of B: what it is made of"])
-    # B as a grid of shaded squares (a scatter, not a heat map, so that a live panel can update it in place)
-    rows, cols = np.indices(B.shape)
-    shade = np.log10(np.abs(B) + 1e-3).ravel()
-    dark = shade > shade.min() + 0.6 * (shade.max() - shade.min())
+    rows, cols = np.indices((4, 4))
+    shade = values["shade"]
+    fig.add_heatmap(x=(cols + 1).ravel(), y=(rows + 1).ravel(), z=shade, zmin=-3.0, zmax=values["cmax"],
+                    colorscale="Blues", showscale=False, xgap=10, ygap=10, name="B(q) shade", hoverinfo="skip",
+                    row=1, col=1)
     fig.add_scatter(x=(cols + 1).ravel(), y=(rows + 1).ravel(), mode="markers+text", name="B(q)", showlegend=False,
-                    text=[f"{v:.3g}" for v in B.ravel()], textfont=dict(color=np.where(dark, "white", "#222222").tolist(),
-                                                                       size=11),
-                    marker=dict(symbol="square", size=44, color=shade, colorscale="Blues", cmin=-3.0,
-                                cmax=float(max(shade.max(), 0.0)), line=dict(width=1, color="#cccccc")),
+                    text=[t.format(values) for t in B_TEXTS],
+                    textfont=dict(color=text_colours(shade), size=11),
+                    marker=dict(symbol="square", size=44, color="rgba(0, 0, 0, 0)"),
                     customdata=[f"B[{i + 1},{j + 1}]" for i, j in zip(rows.ravel(), cols.ravel())],
                     hovertemplate="%{customdata} = %{text}<extra></extra>", row=1, col=1)
     fig.update_yaxes(autorange="reversed", title_text="row", tickvals=[1, 2, 3, 4], range=[4.6, 0.4],
@@ -254,8 +291,8 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     fig.update_xaxes(title_text="column", tickvals=[1, 2, 3, 4], range=[0.4, 4.6], showgrid=False, zeroline=False,
                      row=1, col=1)
     names = [f"B{i}{i}" for i in range(1, 5)]
-    for k, v in (("links", d_links), ("rotors", d_rot), ("payload", d_pay)):
-        fig.add_bar(y=names, x=v, orientation="h", name=TERM_LABELS[k].replace(" (5 kg)", ""),
+    for k, field in _DIAGONAL_BARS:
+        fig.add_bar(y=names, x=values[field], orientation="h", name=_bar_name(k),
                     marker_color=TERM_COLOURS[k], row=1, col=2)
     fig.update_xaxes(title_text="kg m² (B33: kg)", row=1, col=2)
     fig.update_yaxes(autorange="reversed", row=1, col=2)
@@ -263,16 +300,10 @@ def inertia_figure(q, p=None, title: str | None = None) -> go.Figure:
     return fig
 
 
-def inertia_panel_figure(state) -> go.Figure:
-    """The inertia panel's figure: :func:`inertia_figure` of ``state["q"]`` for the robot ``state["robot"]``,
-    titled with its payload (kg) and ``theta2`` (degrees)."""
-    return inertia_figure(state["q"], state["robot"],
-                          f"B(q) with a {state['payload']:g} kg payload at θ2 = {state['theta2']:.0f}°")
-
-
-def inertia_pair() -> FigurePair:
-    """The inertia panel's figure pair: :func:`inertia_panel_figure`, redrawn whole (traces by name)."""
-    return FigurePair("inertia", inertia_panel_figure)
+def inertia_panel_figure(values) -> go.Figure:
+    """The inertia panel's figure: :func:`inertia_figure` drawn from the outputs of
+    :func:`scara.programs.dynamics.dynamics_program` (``values``), titled :data:`INERTIA_TITLE`."""
+    return inertia_figure(None, values=values, title=INERTIA_TITLE.format(values))
 
 
 #: the entries of B drawn by :func:`inertia_slider_figure`: (row, column), legend name, colour, dash

@@ -2,22 +2,29 @@
 inverse-kinematics solutions of a target seen from above, and the Jacobian determinant against theta2.
 
 Every builder takes joint vectors ``q = [theta1, theta2, d3, theta4]`` (rad, rad, m, rad) and an optional
-parameter object ``p`` (``None`` means ``ScaraParams()``), calls :mod:`scara.kinematics` for the geometry
-and returns a ``plotly.graph_objects.Figure``.
+parameter object ``p`` (``None`` means ``ScaraParams()``) and returns a ``plotly.graph_objects.Figure``. The arm,
+its frames, the places of the frames' names and both inverse-kinematics solutions come from the compiled kernels
+of :mod:`scara.programs.kinematics`, the ones the chapter's live panels run (in JupyterLab and, translated, in the
+book's pages): :func:`arm_panel_figure` and :func:`inverse_kinematics_panel_figure` draw a panel's figure from its
+program's outputs, and :data:`ARM_TRACES`, :data:`ARM_TITLE`, :data:`IK_TRACES`, :data:`IK_TITLE` bind those
+outputs to the traces and the title.
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 import plotly.graph_objects as go
 
-from ..errors import ScaraError, UnreachableError, as_array, as_vector, check_count
-from ..kinematics import ikine, jacobian, link_frames, pose
+from ..errors import ScaraError, UnreachableError, as_array, as_vector, check_angles, check_count
+from ..kinematics import _unreachable_message, jacobian, link_frames, pose
 from ..params import ScaraParams
+from ..programs import kinematics as _prog
+from ..programs.kinematics import CANDIDATES, FRAME_NAMES, N_SLOTS, SLOT_LABELS, SLOT_MASKS, SLOT_OF_MASK
 from ._common import AXIS_COLOURS, DASHES, JOINT_NAMES, PALETTE, as_list, slider
 from ._common import MAX_POINTS, FIGURE_BUDGET
-from .panels import FigurePair
+from .panels import FigurePair, Text
 from .layout import _text_width, finish_layout
 # still importable from here, where they lived before scara.plots.layout (the figure rules of tests/ use them)
 
@@ -35,18 +42,27 @@ __all__ = [
     "inverse_kinematics_figure",
     "inverse_kinematics_slider_figure",
     "determinant_figure", "arm_pair", "inverse_kinematics_pair",
+    "ARM_TRACES", "ARM_TITLE", "IK_TRACES", "IK_TITLE", "ARM_PANEL_HEIGHT", "IK_PANEL_HEIGHT",
+    "arm_program_data", "arm_panel_figure", "inverse_kinematics_panel_figure",
 ]
 
-#: names of the frames drawn by :func:`arm_figure`: the base frame, then the six of :func:`link_frames`
-FRAME_NAMES = ("b", "0", "1", "2", "3", "4", "e")
 #: one colour and dash per elbow solution (+1: sin theta2 >= 0, -1: sin theta2 <= 0), told apart in greyscale too
 ELBOW_COLOURS = {+1: "#0072B2", -1: "#E69F00"}
 ELBOW_DASHES = {+1: "solid", -1: "dash"}
 _TRIAD_NAMES = ("x axes", "y axes", "z axes")
+#: the heights (px) of the live panels' figures
+ARM_PANEL_HEIGHT = 480
+IK_PANEL_HEIGHT = 460
+
+
+def _check_triad(triad) -> float:
+    if not (isinstance(triad, (int, float)) and not isinstance(triad, bool) and math.isfinite(triad) and triad > 0):
+        raise ScaraError(f"triad = {triad!r} must be a positive length in metres")
+    return float(triad)
 
 
 def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
-    """Points to draw the arm at ``q`` in the base frame.
+    """Points to draw the arm at ``q`` in the base frame (:func:`scara.programs.kinematics.arm_points_kernel`).
 
     Returns a dict with
     ``"arm"`` (5, 3): base, frame-0 origin (top of the column, height ``d0``), elbow, end of link 2, end
@@ -54,33 +70,22 @@ def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
     ``"triads"``: three arrays (3 * 7, 3), the x, y and z axes (length ``triad`` m) of the frames
     ``b, 0, 1, 2, 3, 4, e`` as segments separated by NaN rows;
     ``"origins"`` (n, 3) and ``"labels"``: the distinct frame origins and their names, coincident frames
-    sharing one label (frames 3, 4 and e share the end-effector origin).
+    sharing one label (frames 3, 4 and e share the end-effector origin;
+    :func:`scara.programs.kinematics.frame_groups_kernel`).
 
     Raises :class:`ShapeError`/:class:`NonFiniteError` for a bad ``q``.
     """
     p = ScaraParams.resolve(p)
-    if not (isinstance(triad, (int, float)) and math.isfinite(triad) and triad > 0):
-        raise ScaraError(f"triad = {triad!r} must be a positive length in metres")
-    frames = np.concatenate([np.eye(4)[None], link_frames(q, p)])  # b, 0, 1, 2, 3, 4, e
-    origins = frames[:, :3, 3]
-    arm = np.array([[0.0, 0.0, 0.0], origins[1], origins[2], origins[3], origins[6]])
-    triads = []
-    for k in range(3):
-        seg = np.full((3 * len(frames), 3), np.nan)
-        seg[0::3] = origins
-        seg[1::3] = origins + triad * frames[:, :3, k]
-        triads.append(seg)
-    # one label per distinct origin, e.g. "3, 4, e" at the end effector
-    labels, label_pts = [], []
-    for name, o in zip(FRAME_NAMES, origins):
-        for i, other in enumerate(label_pts):
-            if np.linalg.norm(other - o) < 1e-9:
-                labels[i] += f", {name}"
-                break
-        else:
-            labels.append(name)
-            label_pts.append(o)
-    return {"arm": arm, "triads": triads, "origins": np.array(label_pts), "labels": labels}
+    triad = _check_triad(triad)
+    q = check_angles(as_array(q, "q", (4,)))
+    frames, arm, triads = np.empty((7, 12)), np.empty((5, 3)), np.empty((63, 3))
+    _prog.arm_points_kernel(q, p.a1, p.a2, p.d0, triad, frames, arm, triads)
+    first, masks = np.empty(7), np.empty(7)
+    n = _prog.frame_groups_kernel(frames, first, masks)
+    labels = [SLOT_LABELS[SLOT_OF_MASK[int(m)]] for m in masks[:n]]
+    origins = frames[first[:n].astype(int), :3].copy()
+    return {"arm": arm, "triads": [triads[21 * k:21 * (k + 1)].copy() for k in range(3)], "origins": origins,
+            "labels": labels}
 
 
 _CAMERA_EYE = (1.05, -1.35, 0.75)
@@ -92,6 +97,8 @@ LABEL_SIZE = 13
 _PHONE_HALF_WIDTH = 115
 #: bottom margin (px) of a 3-D figure with a slider: the slider's pad (40 px), current value, rail and ticks
 _SLIDER_ROOM = 134
+#: height (px) of a frame name's box: the text's line and 2 px of padding above and below
+_LABEL_HEIGHT = 1.35 * LABEL_SIZE + 4.0
 
 
 def scene_projection(scene: dict, plot_height: float):
@@ -122,31 +129,40 @@ def scene_projection(scene: dict, plot_height: float):
     return project
 
 
-def _label_box(text, px, py, cand):
-    """Box (left, bottom, right, top) in pixels of a frame name pinned at (px, py), moved by ``cand`` =
-    ``(xshift, yshift, xanchor, yanchor)``; the text's width is estimated generously, plus 2 px of padding."""
-    w = _text_width(text, LABEL_SIZE) + 6.0
-    h = 1.35 * LABEL_SIZE + 4.0
-    xs, ys, xa, ya = cand
-    left = px + xs - {"left": 0.0, "center": w / 2, "right": w}[xa]
-    bottom = py + ys - {"bottom": 0.0, "middle": h / 2, "top": h}[ya]
-    return (left, bottom, left + w, bottom + h)
+
+def _box_width(text: str) -> float:
+    """Width (px) of a frame name's box: the text's width, estimated generously, plus 2 px of padding a side."""
+    return _text_width(text, LABEL_SIZE) + 6.0
 
 
-def _boxes_overlap(b1, b2, pad=3.0):
-    return b1[0] < b2[2] + pad and b2[0] < b1[2] + pad and b1[1] < b2[3] + pad and b2[1] < b1[3] + pad
+def _view(scene: dict, plot_height: float) -> np.ndarray:
+    """The view of ``scene`` drawn ``plot_height`` px tall, as the placement kernel reads it
+    (:data:`scara.programs.kinematics.VIEW`); the names stay within a phone page's plot area."""
+    return _prog.view_vector(scene, plot_height, _PHONE_HALF_WIDTH, _LABEL_HEIGHT)
 
 
-def _label_candidates(near=(6, 14, 24, 36, 50, 66)):
-    """Offsets ``(xshift, yshift, xanchor, yanchor)`` around a point, nearest first; right and up first."""
-    dirs = [(1, 1), (1, -1), (-1, 1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1)]
-    out = []
-    for r in near:
-        for dx, dy in dirs:
-            k = r / math.hypot(dx, dy)
-            out.append((dx * k, dy * k, "left" if dx > 0 else "right" if dx < 0 else "center",
-                        "bottom" if dy > 0 else "top" if dy < 0 else "middle"))
-    return out
+_X_ANCHORS = {0.0: "left", 0.5: "center", 1.0: "right"}
+_Y_ANCHORS = {0.0: "bottom", 0.5: "middle", 1.0: "top"}
+
+
+def _offset(k: int) -> tuple:
+    """The candidate place ``k`` of a name (:data:`scara.programs.kinematics.CANDIDATES`) as plotly reads it:
+    ``(xshift, yshift, xanchor, yanchor)``."""
+    xs, ys, fx, fy = CANDIDATES[k]
+    return float(xs), float(ys), _X_ANCHORS[float(fx)], _Y_ANCHORS[float(fy)]
+
+
+def _placed(g: dict, scene: dict, plot_height: float):
+    """:func:`scara.programs.kinematics.place_names_kernel` for the frames of :func:`arm_geometry` ``g``: the
+    candidate each name takes, its box (px) and the point of the scene drawn at the box's centre, one row per name."""
+    segments = [np.r_[a, b] for poly in [g["arm"], *g["triads"]] for a, b in zip(poly[:-1], poly[1:])
+                if np.all(np.isfinite(a)) and np.all(np.isfinite(b))]
+    n = len(g["labels"])
+    chosen, boxes, spots = np.empty(n), np.empty((n, 4)), np.empty((n, 3))
+    _prog.place_names_kernel(np.ascontiguousarray(g["origins"], dtype=float),
+                             np.array([_box_width(t) for t in g["labels"]]), np.array(segments),
+                             _view(scene, plot_height), CANDIDATES, chosen, boxes, spots)
+    return chosen, boxes, spots
 
 
 def _place_frame_names(g: dict, scene: dict, plot_height: float) -> list:
@@ -155,47 +171,31 @@ def _place_frame_names(g: dict, scene: dict, plot_height: float) -> list:
     a pixel ``offset = (xshift, yshift, xanchor, yanchor)`` chosen so that no two names overlap, none covers the
     arm or a triad where another place is free, and each stays within a phone page's plot area; ``box`` is the
     name's box (left, bottom, right, top) in pixels from the centre of the plot area, y up
-    (:func:`scene_projection`: the offsets hold at every page width)."""
-    project = scene_projection(scene, plot_height)
-    origins = project(g["origins"])
-    # the drawing the names should not cover: the arm and the triads, sampled along each segment
-    samples = []
-    for poly in [g["arm"], *g["triads"]]:
-        for a, b in zip(poly[:-1], poly[1:]):
-            if np.all(np.isfinite(a)) and np.all(np.isfinite(b)):
-                samples.append(a + np.linspace(0.0, 1.0, 9)[:, None] * (b - a))
-    drawn = project(np.vstack(samples))
-    half_h = plot_height / 2
-    out = []
-    for text, o3, (px, py) in zip(g["labels"], g["origins"], origins):
-        best, best_score = None, None
-        for rank, cand in enumerate(_label_candidates()):
-            box = _label_box(text, px, py, cand)
-            if box[0] < -_PHONE_HALF_WIDTH or box[2] > _PHONE_HALF_WIDTH or box[1] < -half_h or box[3] > half_h:
-                continue
-            if any(_boxes_overlap(box, other[3]) for other in out):
-                continue
-            inside = (drawn[:, 0] > box[0]) & (drawn[:, 0] < box[2]) & (drawn[:, 1] > box[1]) & (drawn[:, 1] < box[3])
-            score = int(inside.sum()) + 0.5 * rank
-            if best_score is None or score < best_score:
-                best, best_score = cand, score
-        if best is None:  # nowhere free within the phone's plot area: the last resort, far above
-            best = (0.0, 80.0, "center", "bottom")
-        out.append((text, o3, best, _label_box(text, px, py, best)))
-    return out
+    (:func:`scene_projection`: the offsets hold at every page width). The choice is
+    :func:`scara.programs.kinematics.place_names_kernel`'s."""
+    chosen, boxes, _ = _placed(g, scene, plot_height)
+    return [(text, o3, _offset(int(k)), tuple(float(v) for v in box))
+            for text, o3, k, box in zip(g["labels"], g["origins"], chosen, boxes)]
+
+
+def _annotation(text, o3, offset) -> dict:
+    xs, ys, xa, ya = offset
+    return dict(x=round(float(o3[0]), 4), y=round(float(o3[1]), 4), z=round(float(o3[2]), 4), text=text,
+                showarrow=False, xshift=round(xs, 1), yshift=round(ys, 1), xanchor=xa, yanchor=ya,
+                font=dict(size=LABEL_SIZE, color="#222222"), bgcolor="rgba(255,255,255,0.7)", borderpad=1)
 
 
 def frame_label_annotations(g: dict, scene: dict, plot_height: float) -> list[dict]:
     """The names of the frames of :func:`arm_geometry` ``g`` as plotly scene annotations (sharp text on a light
     background, checked like any text of the page), each pinned to its frame's origin and moved off it as
     :func:`_place_frame_names` chooses for the view of ``scene`` drawn ``plot_height`` px tall."""
-    out = []
-    for text, o3, (xs, ys, xa, ya), _ in _place_frame_names(g, scene, plot_height):
-        out.append(dict(x=round(float(o3[0]), 4), y=round(float(o3[1]), 4), z=round(float(o3[2]), 4), text=text,
-                        showarrow=False, xshift=round(xs, 1), yshift=round(ys, 1), xanchor=xa, yanchor=ya,
-                        font=dict(size=LABEL_SIZE, color="#222222"), bgcolor="rgba(255,255,255,0.7)",
-                        borderpad=1))
-    return out
+    return [_annotation(text, o3, offset) for text, o3, offset, _ in _place_frame_names(g, scene, plot_height)]
+
+
+def _names_trace(x, y, z, text) -> go.Scatter3d:
+    return go.Scatter3d(x=x, y=y, z=z, mode="text", text=text, name="frame names", showlegend=False,
+                        textposition="middle center", textfont=dict(size=LABEL_SIZE, color="#222222"),
+                        hoverinfo="skip")
 
 
 def frame_names_trace(g: dict, scene: dict, plot_height: float) -> go.Scatter3d:
@@ -203,27 +203,8 @@ def frame_names_trace(g: dict, scene: dict, plot_height: float) -> go.Scatter3d:
     each centred on the point of the scene drawn where :func:`_place_frame_names` puts the middle of its box:
     the point at the depth of the frame's origin, on the camera ray through that pixel. A trace moves with the
     data of a live panel (a redraw changes no layout, so a view the reader has turned stays turned)."""
-    ranges = np.array([scene[k]["range"] for k in ("xaxis", "yaxis", "zaxis")], float)
-    aspect = np.array([scene["aspectratio"][k] for k in "xyz"], float)
-    eye = np.array([scene["camera"]["eye"][k] for k in "xyz"], float)
-    centre = np.array([scene["camera"]["center"][k] for k in "xyz"], float)
-    zc = (eye - centre) / np.linalg.norm(eye - centre)
-    xc = np.cross([0.0, 0.0, 1.0], zc)
-    xc /= np.linalg.norm(xc)
-    yc = np.cross(zc, xc)
-    focal = 1.0 / math.tan(math.pi / 8) * plot_height / 2
-    texts, points = [], []
-    for text, o3, _, box in _place_frame_names(g, scene, plot_height):
-        model = (o3 - ranges.mean(axis=1)) / (ranges[:, 1] - ranges[:, 0]) * aspect
-        depth = -((model - eye) @ zc)
-        cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
-        model_pt = eye + depth * (cx / focal * xc + cy / focal * yc - zc)
-        points.append(model_pt / aspect * (ranges[:, 1] - ranges[:, 0]) + ranges.mean(axis=1))
-        texts.append(text)
-    pts = np.array(points)
-    return go.Scatter3d(x=as_list(pts[:, 0]), y=as_list(pts[:, 1]), z=as_list(pts[:, 2]), mode="text", text=texts,
-                        name="frame names", showlegend=False, textposition="middle center",
-                        textfont=dict(size=LABEL_SIZE, color="#222222"), hoverinfo="skip")
+    _, _, spots = _placed(g, scene, plot_height)
+    return _names_trace(as_list(spots[:, 0]), as_list(spots[:, 1]), as_list(spots[:, 2]), list(g["labels"]))
 
 
 def _plot_height(fig) -> float:
@@ -231,25 +212,33 @@ def _plot_height(fig) -> float:
     return lay.height - lay.margin.t - lay.margin.b
 
 
-def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
-    g = arm_geometry(q, p, triad)
+def _arm_trace_list(arm, triads, colour=None, name="arm", frames=True, exact=False):
+    """The traces of the arm: its polyline ``arm`` (x, y, z) and end effector (its last point), and with
+    ``frames`` the triads ``triads`` (three (x, y, z)). Exact: the numbers as they are (a live panel's figure,
+    which its program's outputs update); otherwise rounded to 0.1 mm (a page's static figure)."""
     colour = colour or PALETTE["arm"]
-    arm, ee = g["arm"], g["arm"][-1]
+    data = (lambda v: np.asarray(v, dtype=float)) if exact else as_list
+    ee = [float(arm[c][-1]) if exact else round(arm[c][-1], 4) for c in range(3)]
     traces = [
-        go.Scatter3d(x=as_list(arm[:, 0]), y=as_list(arm[:, 1]), z=as_list(arm[:, 2]), mode="lines+markers",
+        go.Scatter3d(x=data(arm[0]), y=data(arm[1]), z=data(arm[2]), mode="lines+markers",
                      name=name, line=dict(color=colour, width=9), marker=dict(size=4, color=colour),
                      hovertemplate="(%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra>" + name + "</extra>"),
-        go.Scatter3d(x=[round(ee[0], 4)], y=[round(ee[1], 4)], z=[round(ee[2], 4)], mode="markers",
+        go.Scatter3d(x=[ee[0]], y=[ee[1]], z=[ee[2]], mode="markers",
                      name="end effector", marker=dict(size=6, color=PALETTE["reference"], symbol="diamond"),
                      hovertemplate="p_e = (%{x:.3f}, %{y:.3f}, %{z:.3f}) m<extra></extra>"),
     ]
     if frames:
         for k in range(3):
-            s = g["triads"][k]
-            traces.append(go.Scatter3d(x=as_list(s[:, 0]), y=as_list(s[:, 1]), z=as_list(s[:, 2]), mode="lines",
+            s = triads[k]
+            traces.append(go.Scatter3d(x=data(s[0]), y=data(s[1]), z=data(s[2]), mode="lines",
                                        name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5, dash=DASHES[k]),
                                        hoverinfo="skip"))
     return traces
+
+
+def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
+    g = arm_geometry(q, p, triad)
+    return _arm_trace_list(g["arm"].T, [s.T for s in g["triads"]], colour, name, frames)
 
 
 def _scene(p):
@@ -267,11 +256,71 @@ def _scene(p):
 def _pose_text(q, p, head: str = ""):
     """Two title lines (each short enough for a phone-width page): the position, then phi and det J_A."""
     # rounded first, then + 0.0, so that a tiny negative value reads 0.000, not -0.000
-    x = np.round(pose(q, p), 3) + 0.0
+    x = pose(q, p)
+    phi = round(math.degrees(x[3]), 1) + 0.0  # from phi itself (as in ARM_TITLE), not from phi rounded in rad
+    x = np.round(x, 3) + 0.0
     det = round(float(np.linalg.det(jacobian(q, p))), 3) + 0.0
-    phi = round(math.degrees(x[3]), 1) + 0.0
     return (f"{head}p = ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m<br>"
             f"φ = {phi:.1f}°, det J_A = {det:.3f} m²")
+
+
+
+# --------------------------------------------------------------------------------------------------
+# the arm in 3-D: drawn from the outputs of the direct-kinematics program
+# --------------------------------------------------------------------------------------------------
+#: the outputs of :func:`scara.programs.kinematics.kinematics_program` that each trace of :func:`arm_panel_figure`
+#: shows (a trace's name -> {property: output})
+ARM_TRACES = {
+    "arm": {"x": "arm_x", "y": "arm_y", "z": "arm_z"},
+    "end effector": {"x": ("px",), "y": ("py",), "z": ("pz",)},
+    **{name: {c: f"{a}_axes_{c}" for c in "xyz"} for a, name in zip("xyz", _TRIAD_NAMES)},
+    "frame names": {"x": "names_x", "y": "names_y", "z": "names_z"},
+}
+#: the arm's title: two lines short enough for a phone-width page, the position (1.5), then phi and det J_A
+ARM_TITLE = Text("p = ({title_px:.3f}, {title_py:.3f}, {title_pz:.3f}) m<br>"
+                 "φ = {title_phi:.1f}°, det J_A = {title_det:.3f} m²")
+
+
+@functools.lru_cache(maxsize=32)
+def _arm_plot_height(height: int, title_lines: int, frames: bool) -> float:
+    """The height (px) of the plot area of :func:`arm_figure` (its legend and a title of ``title_lines`` lines
+    above it), which the frame names are placed for."""
+    names = ["arm", "end effector", *(_TRIAD_NAMES if frames else ())]
+    fig = go.Figure([go.Scatter3d(name=n) for n in names])
+    finish_layout(fig, "<br>".join(["."] * title_lines), height)
+    return _plot_height(fig)
+
+
+def arm_program_data(p=None, height: int = ARM_PANEL_HEIGHT, triad: float = 0.3, title_lines: int = 2,
+                     frames: bool = True) -> np.ndarray:
+    """The ``data`` of :func:`scara.programs.kinematics.kinematics_program` for the robot ``p`` drawn by
+    :func:`arm_figure` ``height`` px tall with a title of ``title_lines`` lines: the lengths, the triads' length
+    ``triad`` (m), the 3-D view and the widths of the frame names' boxes."""
+    p = ScaraParams.resolve(p)
+    view = _view(_scene(p), _arm_plot_height(int(height), int(title_lines), bool(frames)))
+    return _prog.arm_data(p.a1, p.a2, p.d0, _check_triad(triad), view, [_box_width(t) for t in SLOT_LABELS])
+
+
+def _arm_xyz(values, prefix):
+    return [values[f"{prefix}_{c}"] for c in "xyz"]
+
+
+def _shown_slots(values) -> list:
+    """The slots of the names the program shows, in the order of their first frames."""
+    return [s for s in range(N_SLOTS) if np.isfinite(values["names_x"][s])]
+
+
+def arm_panel_figure(values: dict, p=None, height: int = ARM_PANEL_HEIGHT) -> go.Figure:
+    """The direct-kinematics panel's figure, drawn from the outputs ``values`` of
+    :func:`scara.programs.kinematics.kinematics_program` run on :func:`arm_program_data` ``(p, height)``: the
+    figure of :func:`arm_figure`, the numbers unrounded and the frame names' trace holding every possible name (those
+    not shown at NaN), so that the program's outputs bound by :data:`ARM_TRACES` and :data:`ARM_TITLE` redraw it."""
+    p = ScaraParams.resolve(p)
+    fig = go.Figure(_arm_trace_list(_arm_xyz(values, "arm"), [_arm_xyz(values, f"{a}_axes") for a in "xyz"],
+                                    exact=True))
+    finish_layout(fig, ARM_TITLE.format(values), height, scene=_scene(p), uirevision="arm")
+    fig.add_trace(_names_trace(*(np.asarray(values[f"names_{c}"], dtype=float) for c in "xyz"), list(SLOT_LABELS)))
+    return fig
 
 
 def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | None = None,
@@ -282,7 +331,8 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | 
     ``q`` (4,) in rad, rad, m, rad. The title states ``x_e`` (equation ``eq-kin-xe`` of chapter 1) and ``det J_A``.
     The frame names are placed by :func:`_place_frame_names`, so that none overlaps another in the figure's
     view: with ``names="text"`` (the default, what a live panel redraws) as a 3-D text trace, the last trace;
-    with ``names="annotations"`` (the book's static figures) as scene annotations.
+    with ``names="annotations"`` (the book's static figures) as scene annotations. Everything drawn comes from one
+    run of :func:`scara.programs.kinematics.arm_kernel`, the direct-kinematics panel's kernel.
 
     >>> fig = arm_figure([0.3, -1.2, 0.4, 0.1])
     >>> [t.name for t in fig.data]
@@ -291,18 +341,24 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | 
     ['b', '0', '1', '2', '3, 4, e']
     """
     p = ScaraParams.resolve(p)
-    q = as_vector(q, "q")
+    q = check_angles(as_vector(q, "q"))
     if names not in ("text", "annotations"):
         raise ScaraError(f"names = {names!r} must be 'text' (a 3-D text trace) or 'annotations'")
-    fig = go.Figure(_arm_traces(q, p, triad, frames=frames))
-    scene = _scene(p)
-    finish_layout(fig, title or _pose_text(q, p), height, scene=scene, uirevision="arm")
+    lines = title.count("<br>") + 1 if title else ARM_TITLE.template.count("<br>") + 1
+    values = _prog.run_arm(q, arm_program_data(p, height, triad, lines, frames))
+    fig = go.Figure(_arm_trace_list(_arm_xyz(values, "arm"), [_arm_xyz(values, f"{a}_axes") for a in "xyz"],
+                                    frames=frames))
+    finish_layout(fig, title or ARM_TITLE.format(values), height, scene=_scene(p), uirevision="arm")
     if frames:
-        g = arm_geometry(q, p, triad)
+        shown = _shown_slots(values)
         if names == "annotations":
-            fig.layout.scene.annotations = frame_label_annotations(g, scene, _plot_height(fig))
+            origins = values["origins"].reshape(7, 3)
+            fig.layout.scene.annotations = [
+                _annotation(SLOT_LABELS[s], origins[(SLOT_MASKS[s] & -SLOT_MASKS[s]).bit_length() - 1],
+                            _offset(int(values["names_choice"][s]))) for s in shown]
         else:
-            fig.add_trace(frame_names_trace(g, scene, _plot_height(fig)))
+            fig.add_trace(_names_trace(*(as_list(values[f"names_{c}"][shown]) for c in "xyz"),
+                                       [SLOT_LABELS[s] for s in shown]))
     return fig
 
 
@@ -362,17 +418,26 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
     return fig
 
 
+
+def _top_arm_trace(xs, ys, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0,
+                   dash: str = "solid", exact: bool = False) -> go.Scatter:
+    """The arm seen from above through the points ``xs``, ``ys`` (base axis, elbow, end effector) as one 2-D line
+    trace; exact: the numbers as they are (a live panel's figure), otherwise rounded to 0.1 mm."""
+    colour = colour or PALETTE["arm"]
+    data = (lambda v: np.asarray(v, dtype=float)) if exact else as_list
+    return go.Scatter(x=data(xs), y=data(ys), mode="lines+markers", name=name,
+                      line=dict(color=colour, width=width, dash=dash), marker=dict(size=[9, 7, 7], color=colour),
+                      opacity=opacity, showlegend=showlegend,
+                      hovertemplate="(%{x:.3f}, %{y:.3f}) m<extra>" + name + "</extra>")
+
+
 def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0,
                  dash: str = "solid") -> go.Scatter:
     """The arm at ``q`` seen from above (base x-y plane) as one 2-D line trace: base axis, elbow, end effector."""
     p = ScaraParams.resolve(p)
     origins = link_frames(q, p)[:, :3, 3]
     pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
-    colour = colour or PALETTE["arm"]
-    return go.Scatter(x=as_list(pts[:, 0]), y=as_list(pts[:, 1]), mode="lines+markers", name=name,
-                      line=dict(color=colour, width=width, dash=dash), marker=dict(size=[9, 7, 7], color=colour),
-                      opacity=opacity, showlegend=showlegend,
-                      hovertemplate="(%{x:.3f}, %{y:.3f}) m<extra>" + name + "</extra>")
+    return _top_arm_trace(pts[:, 0], pts[:, 1], colour, name, width, showlegend, opacity, dash)
 
 
 def _circle(radius, n=145):
@@ -388,19 +453,33 @@ def top_axes(fig, p, margin: float = 0.2, xr=None, yr=None) -> None:
     fig.update_yaxes(title_text="y (m)", range=yr or [-reach, reach], zeroline=False, scaleanchor="x", scaleratio=1)
 
 
-def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
-    """Top view of both closed-form inverse-kinematics solutions (elbow +1 and -1) reaching the target ``x``.
 
-    ``x = [p_x, p_y, p_z, phi]`` (m, m, m, rad). Draws the workspace boundary circles ``r = a1 + a2`` and
-    ``r = |a1 - a2|``, both arms (elbow +1 solid, elbow -1 dashed) and the target; the title gives theta2 of
-    each. Raises :class:`UnreachableError` (from :func:`ikine`) when the target is outside the workspace.
+# --------------------------------------------------------------------------------------------------
+# the inverse kinematics from above: drawn from the outputs of the inverse-kinematics program
+# --------------------------------------------------------------------------------------------------
+#: the outputs of :func:`scara.programs.kinematics.inverse_kinematics_program` that each trace of
+#: :func:`inverse_kinematics_panel_figure` shows
+IK_TRACES = {
+    "elbow +1": {"x": "up_x", "y": "up_y"},
+    "elbow −1": {"x": "down_x", "y": "down_y"},
+    "target": {"x": ("target_x",), "y": ("target_y",)},
+}
+#: the title of the inverse kinematics: the target and the quill's ``d3``, then theta2 of each elbow (theta2 of
+#: elbow -1 is never positive: its size follows a minus sign)
+IK_TITLE = Text("p = ({px:.2f}, {py:.2f}, {pz:.2f}) m, d3 = {d3:.2f} m<br>"
+                "θ2 = {theta2_up:.1f}° (elbow +1), −{theta2_down_size:.1f}° (elbow −1)")
 
-    >>> fig = inverse_kinematics_figure([0.18, 0.20, 0.5, 0.0])
-    >>> [t.name for t in fig.data][1]
-    'elbow +1'
-    """
-    p = ScaraParams.resolve(p)
-    x = as_vector(x, "x")
+
+def _inverse_kinematics(x, p):
+    """One run of :func:`scara.programs.kinematics.inverse_kinematics_kernel` for the target ``x`` (m, m, m, rad):
+    ``(status, values)``, the outputs by field with the target as the panel's controls (``px, py, pz`` in m,
+    ``phi`` in degrees)."""
+    status, values = _prog.run_inverse_kinematics(x, _prog.inverse_kinematics_data(p))
+    values.update(px=float(x[0]), py=float(x[1]), pz=float(x[2]), phi=math.degrees(x[3]))
+    return status, values
+
+
+def _inverse_kinematics_drawing(values, p, height, exact) -> go.Figure:
     fig = go.Figure()
     cx, cy = _circle(p.r_max)
     fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines", name=f"reach {p.r_max:g} m",
@@ -410,26 +489,53 @@ def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
         fig.add_trace(go.Scatter(x=as_list(cx), y=as_list(cy), mode="lines",
                                  name=f"hole {p.r_min:g} m",
                                  line=dict(color="#999999", dash="dot", width=1), hoverinfo="skip"))
-    parts = []
-    for elbow in (+1, -1):
-        q = ikine(x, p, elbow=elbow)
+    for elbow, key in ((+1, "up"), (-1, "down")):
         sign = "+" if elbow > 0 else "−"
-        fig.add_trace(top_view_arm(q, p, colour=ELBOW_COLOURS[elbow], name=f"elbow {sign}1", dash=ELBOW_DASHES[elbow]))
-        parts.append(f"θ2 = {math.degrees(q[1]):.1f}°".replace("-", "−"))
-    fig.add_trace(go.Scatter(x=[x[0]], y=[x[1]], mode="markers", name="target",
+        fig.add_trace(_top_arm_trace(values[f"{key}_x"], values[f"{key}_y"], colour=ELBOW_COLOURS[elbow],
+                                     name=f"elbow {sign}1", dash=ELBOW_DASHES[elbow], exact=exact))
+    fig.add_trace(go.Scatter(x=[values["target_x"]], y=[values["target_y"]], mode="markers", name="target",
                              marker=dict(symbol="x", size=13, color=PALETTE["reference"]),
                              hovertemplate="target (%{x:.3f}, %{y:.3f}) m<extra></extra>"))
-    finish_layout(fig, f"p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, d3 = {p.d0 - x[2]:.2f} m<br>"
-                       f"{parts[0]} (elbow +1), {parts[1][5:]} (elbow −1)", height)
+    finish_layout(fig, IK_TITLE.format(values), height)
     top_axes(fig, p, margin=0.15)
     return fig
 
 
-def _reach_title(x, q, p) -> str:
-    """Two title lines for the target ``x`` reached by ``q`` = {elbow: joints}, or refused (``q`` is None)."""
-    r = math.hypot(x[0], x[1])
+def inverse_kinematics_panel_figure(values: dict, p=None, height: int = IK_PANEL_HEIGHT) -> go.Figure:
+    """The inverse-kinematics panel's figure, drawn from the outputs ``values`` of
+    :func:`scara.programs.kinematics.inverse_kinematics_program` (with the panel's settings): the figure of
+    :func:`inverse_kinematics_figure`, the numbers unrounded, so that the outputs bound by :data:`IK_TRACES` and
+    :data:`IK_TITLE` redraw it."""
+    return _inverse_kinematics_drawing(values, ScaraParams.resolve(p), height, exact=True)
+
+
+def inverse_kinematics_figure(x, p=None, height: int = 500) -> go.Figure:
+    """Top view of both closed-form inverse-kinematics solutions (elbow +1 and -1) reaching the target ``x``.
+
+    ``x = [p_x, p_y, p_z, phi]`` (m, m, m, rad). Draws the workspace boundary circles ``r = a1 + a2`` and
+    ``r = |a1 - a2|``, both arms (elbow +1 solid, elbow -1 dashed) and the target; the title gives theta2 of
+    each. The solutions are those of :func:`scara.programs.kinematics.inverse_kinematics_kernel`, the
+    inverse-kinematics panel's kernel. Raises :class:`UnreachableError` (the message of :func:`ikine`) when the
+    target is outside the workspace.
+
+    >>> fig = inverse_kinematics_figure([0.18, 0.20, 0.5, 0.0])
+    >>> [t.name for t in fig.data][1]
+    'elbow +1'
+    """
+    p = ScaraParams.resolve(p)
+    x = check_angles(as_vector(x, "x"), "x", columns=(3,))
+    status, values = _inverse_kinematics(x, p)
+    if status != 0:
+        raise UnreachableError(_unreachable_message(x, status, p))
+    return _inverse_kinematics_drawing(values, p, height, exact=False)
+
+
+def _reach_title(x, status, values, p) -> str:
+    """Two title lines for the target ``x`` reached (``status`` 0) or refused, from the outputs ``values`` of
+    :func:`_inverse_kinematics`."""
+    r = values["r"]
     head = f"p = ({x[0]:.2f}, {x[1]:.2f}, {x[2]:.2f}) m, r = {r:.3f} m"
-    if q is None:
+    if status != 0:
         if r > p.r_max:
             why = f"out of reach: r > a1 + a2 = {p.r_max:g} m"
         elif r < p.r_min:
@@ -437,7 +543,7 @@ def _reach_title(x, q, p) -> str:
         else:
             why = f"out of reach: d3 = {p.d0 - x[2]:.2f} m is off the stroke"
         return f"{head}<br>{why}"
-    t_up, t_down = (round(math.degrees(q[e][1]), 1) + 0.0 for e in (+1, -1))
+    t_up, t_down = (round(values[key], 1) + 0.0 for key in ("theta2_up", "theta2_down"))
     return f"{head}<br>θ2 = {t_up:.1f}° (elbow +1), {t_down:.1f}° (−1)".replace("-", "−")
 
 
@@ -461,33 +567,28 @@ def inverse_kinematics_slider_figure(x, values, component: int = 0, p=None, heig
     values = as_array(values, "values", (len(np.atleast_1d(values)),))
     if not 2 <= len(values) <= 61:
         raise ScaraError(f"{len(values)} slider steps: use between 2 and 61 (pages stay light)")
-    targets, solutions = [], []
+    check_angles(x, "x", columns=(3,))
+    targets, runs = [], []
     for v in values:
         t = x.copy()
         t[component] = v
         targets.append(t)
-        try:
-            solutions.append({e: ikine(t, p, elbow=e) for e in (+1, -1)})
-        except UnreachableError:
-            solutions.append(None)
-    if solutions[0] is None:
+        runs.append(_inverse_kinematics(t, p))
+    if runs[0][0] != 0:
         raise UnreachableError(f"the first target {targets[0][:3].round(4).tolist()} m is out of reach: start the "
                                "slider at a reachable value")
     fig = inverse_kinematics_figure(targets[0], p, height=height)
     names = [t.name for t in fig.data]
     moving = [names.index("elbow +1"), names.index("elbow −1"), names.index("target")]
     steps = []
-    for v, t, q in zip(values, targets, solutions):
-        xs, ys = [], []
-        for e in (+1, -1):
-            arm = top_view_arm(q[e], p) if q is not None else None
-            xs.append(list(arm.x) if arm is not None else [])
-            ys.append(list(arm.y) if arm is not None else [])
+    for v, t, (status, s) in zip(values, targets, runs):
+        xs = [as_list(s[f"{key}_x"]) if status == 0 else [] for key in ("up", "down")]
+        ys = [as_list(s[f"{key}_y"]) if status == 0 else [] for key in ("up", "down")]
         xs.append([round(float(t[0]), 4)])
         ys.append([round(float(t[1]), 4)])
-        steps.append(dict(label=f"{v:.2f}", method="update", args=[{"x": xs, "y": ys},
-                                                                    {"title.text": _reach_title(t, q, p)}, moving]))
-    fig.layout.title.text = _reach_title(targets[0], solutions[0], p)
+        steps.append(dict(label=f"{v:.2f}", method="update",
+                          args=[{"x": xs, "y": ys}, {"title.text": _reach_title(t, status, s, p)}, moving]))
+    fig.layout.title.text = _reach_title(targets[0], *runs[0], p)
     name = ("p_x", "p_y", "p_z")[component]
     fig.update_layout(sliders=[slider(steps, prefix=f"{name} (m) = ")], margin_b=_SLIDER_ROOM)
     return fig
@@ -518,14 +619,17 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     return fig
 
 
-def arm_pair(p=None, height: int = 480) -> FigurePair:
-    """The direct-kinematics panel's figure: :func:`arm_figure` of the state's ``q`` (redrawn whole, trace by
-    name)."""
+
+def arm_pair(p=None, height: int = ARM_PANEL_HEIGHT) -> FigurePair:
+    """The direct-kinematics panel's figure: :func:`arm_panel_figure` of the outputs of
+    :func:`scara.programs.kinematics.kinematics_program` (run on :func:`arm_program_data` of the same ``p`` and
+    ``height``)."""
     p = ScaraParams.resolve(p)
-    return FigurePair("arm", lambda state: arm_figure(state["q"], p, height=height))
+    return FigurePair("arm", lambda values: arm_panel_figure(values, p, height=height))
 
 
-def inverse_kinematics_pair(p=None, height: int = 460) -> FigurePair:
-    """The inverse-kinematics panel's figure: :func:`inverse_kinematics_figure` of the state's ``target``."""
+def inverse_kinematics_pair(p=None, height: int = IK_PANEL_HEIGHT) -> FigurePair:
+    """The inverse-kinematics panel's figure: :func:`inverse_kinematics_panel_figure` of the outputs of
+    :func:`scara.programs.kinematics.inverse_kinematics_program`."""
     p = ScaraParams.resolve(p)
-    return FigurePair("inverse kinematics", lambda state: inverse_kinematics_figure(state["target"], p, height=height))
+    return FigurePair("inverse kinematics", lambda values: inverse_kinematics_panel_figure(values, p, height=height))

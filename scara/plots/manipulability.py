@@ -24,8 +24,9 @@ from ._common import PALETTE, as_list, slider
 from ._common import MAX_GRID, MAX_POINTS, MAX_SWEEP, MAX_TARGETS, FIGURE_BUDGET
 from .kinematics import _circle, top_axes, top_view_arm
 from .layout import finish_layout
-from .panels import FigurePair
+from .panels import Text
 from ..params import ScaraParams
+from ..programs.manipulability import ELLIPSE_CLIP
 
 __all__ = [
     "REFERENCE_CONFIGURATIONS",
@@ -38,7 +39,7 @@ __all__ = [
     "duality_figure",
     "ellipse_slider_figure",
     "major_axis_angle",
-    "base_turn_figure", "ellipse_panel_figure", "ellipse_pair",
+    "base_turn_figure", "ellipse_panel_figure", "ELLIPSE_TRACES", "ELLIPSE_TITLE",
 ]
 
 #: the five reference configurations of chapter 2 (section *Five reference configurations*), with their labels
@@ -49,7 +50,7 @@ REFERENCE_CONFIGURATIONS = {
     "q4": (0.0, 98 * math.pi / 100, 0.5, 0.0),
     "q5": (0.0, -99.99 * math.pi / 100, 0.5, 0.0),
 }
-_CLIP = 50.0  # m: drawn semi-axes are capped here (the view is about 2.5 m wide)
+_CLIP = ELLIPSE_CLIP  # m: drawn semi-axes are capped here (the view is about 2.5 m wide)
 #: line style per ellipse kind: velocity solid, force dashed (told apart in greyscale)
 _DASH = {"velocity": "solid", "force": "dash"}
 
@@ -92,20 +93,29 @@ def ellipse_traces(q, p=None, velocity_scale: float = 0.15, force_scale: float |
         traces.append(top_view_arm(q, p, showlegend=showlegend))
     for ell, sc, key in ((vel, velocity_scale, "velocity"), (frc, force_scale, "force")):
         xy = ellipse_xy(ell, sc, n)
-        traces.append(go.Scatter(x=as_list(xy[:, 0]), y=as_list(xy[:, 1]), mode="lines",
-                                 name=f"{key} ellipse", legendgroup=key, showlegend=showlegend,
-                                 line=dict(color=PALETTE[key], width=2.5, dash=_DASH[key]),
-                                 hoverinfo="skip"))
+        traces.append(_outline_trace(key, as_list(xy[:, 0]), as_list(xy[:, 1]), showlegend))
         if axes:
             seg = []
             for i in range(2):
                 half = min(sc * ell.lengths[i], _CLIP) * ell.axes[:, i]
                 seg += [ell.centre[:2] - half, ell.centre[:2] + half, [np.nan, np.nan]]
             seg = np.array(seg)
-            traces.append(go.Scatter(x=as_list(seg[:, 0]), y=as_list(seg[:, 1]), mode="lines",
-                                     name=f"{key} principal axes", legendgroup=key, showlegend=False,
-                                     line=dict(color=PALETTE[key], width=1.2, dash="dot"), hoverinfo="skip"))
+            traces.append(_axes_trace(key, as_list(seg[:, 0]), as_list(seg[:, 1])))
     return traces
+
+
+def _outline_trace(key: str, x, y, showlegend: bool = True) -> go.Scatter:
+    """The outline of the ``key`` ellipse (``"velocity"``: solid, ``"force"``: dashed) through the points ``x``,
+    ``y``."""
+    return go.Scatter(x=x, y=y, mode="lines", name=f"{key} ellipse", legendgroup=key, showlegend=showlegend,
+                      line=dict(color=PALETTE[key], width=2.5, dash=_DASH[key]), hoverinfo="skip")
+
+
+def _axes_trace(key: str, x, y) -> go.Scatter:
+    """The principal axes of the ``key`` ellipse: the segments through ``x``, ``y`` (gaps between them), dotted
+    and out of the legend."""
+    return go.Scatter(x=x, y=y, mode="lines", name=f"{key} principal axes", legendgroup=key, showlegend=False,
+                      line=dict(color=PALETTE[key], width=1.2, dash="dot"), hoverinfo="skip")
 
 
 def workspace_points(radii=(0.3, 0.55, 0.8), n_angles: int = 8, height: float = 0.5) -> np.ndarray:
@@ -393,20 +403,32 @@ def base_turn_figure(theta1_deg=None, theta2: float = math.pi / 4, p=None, scale
     return fig
 
 
-def ellipse_panel_figure(state, p=None, height: int = 520) -> go.Figure:
-    """The ellipses panel's figure: the top view of the arm at ``state["q"]`` with its horizontal velocity and
-    force ellipses (:func:`ellipse_traces`, both drawn ``state["scale"]`` metres per m/s and per N), titled
-    with the angles ``state["theta"]`` (degrees) and ``w = state["w"]``."""
+#: how the ellipses panel draws its program's outputs (:mod:`scara.programs.manipulability`): the arm and each
+#: ellipse's outline and principal axes, keyed by trace name (a :class:`~scara.plots.panels.PageProgram`'s
+#: ``traces``); :func:`ellipse_panel_figure` draws the same fields
+ELLIPSE_TRACES = {"ellipses": {
+    "arm": {"x": "arm_x", "y": "arm_y"},
+    "velocity ellipse": {"x": "vel_x", "y": "vel_y"},
+    "velocity principal axes": {"x": "vel_axes_x", "y": "vel_axes_y"},
+    "force ellipse": {"x": "force_x", "y": "force_y"},
+    "force principal axes": {"x": "force_axes_x", "y": "force_axes_y"},
+}}
+#: the ellipses panel's title, from the sliders' angles and ``w``
+ELLIPSE_TITLE = Text("θ1 = {theta1:.0f}°, θ2 = {theta2:.0f}°: w = {w:.3f} m²")
+
+
+def ellipse_panel_figure(values, p=None, height: int = 520) -> go.Figure:
+    """The ellipses panel's figure, drawn from the outputs of :func:`scara.programs.manipulability.ellipse_program`
+    (``values``: the program's outputs by field with the settings): the top view of the arm with its horizontal
+    velocity and force ellipses and their principal axes (styled as :func:`ellipse_traces` styles them), titled
+    :data:`ELLIPSE_TITLE`. The fields drawn are those of :data:`ELLIPSE_TRACES`."""
     p = ScaraParams.resolve(p)
-    sc = state["scale"]
-    fig = go.Figure(ellipse_traces(state["q"], p, sc, sc, axes=True))
-    theta = state["theta"]
-    finish_layout(fig, f"θ1 = {theta[0]:.0f}°, θ2 = {theta[1]:.0f}°: w = {state['w']:.3f} m²", height)
+    arm = top_view_arm(np.zeros(4), p)
+    arm.update(x=values["arm_x"], y=values["arm_y"])
+    fig = go.Figure([arm, _outline_trace("velocity", values["vel_x"], values["vel_y"]),
+                     _axes_trace("velocity", values["vel_axes_x"], values["vel_axes_y"]),
+                     _outline_trace("force", values["force_x"], values["force_y"]),
+                     _axes_trace("force", values["force_axes_x"], values["force_axes_y"])])
+    finish_layout(fig, ELLIPSE_TITLE.format(values), height)
     top_axes(fig, p)
     return fig
-
-
-def ellipse_pair(p=None) -> FigurePair:
-    """The ellipses panel's figure pair: :func:`ellipse_panel_figure`, redrawn whole (traces by name)."""
-    p = ScaraParams.resolve(p)
-    return FigurePair("ellipses", lambda state: ellipse_panel_figure(state, p))

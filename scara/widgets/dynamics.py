@@ -1,24 +1,21 @@
 """Live panel of chapter 5 (dynamics): choose the payload and the configuration and watch ``B(q)``, its
 eigenvalues and the gravity load change; optionally hold the arm with PD plus gravity and see the quill sag
-that the unknown payload causes. Jupyter only."""
+that the unknown payload causes. Every move is one run of the page program
+:func:`scara.programs.dynamics.dynamics_program`, drawn by the bindings of
+:data:`scara.plots.dynamics.INERTIA_TRACES` (the same in JupyterLab and in the book's pages)."""
 from __future__ import annotations
 
 import math
 
-import numpy as np
-
-from ..dynamics import gravity, inertia
-from ..errors import ScaraError, as_vector, check_positive
-from ..plots.dynamics import inertia_pair
-from ..plots.panels import Control, Panel, angle_control, stroke_control
-from .._simulate import PDGravityController
+from ..errors import as_vector
+from ..plots.dynamics import INERTIA_TITLE, INERTIA_TRACES, inertia_panel_figure
+from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, stroke_control
+from ..programs.dynamics import (DYNAMICS_INPUTS, DYNAMICS_OUTPUTS, REFUSED_GAIN, REFUSED_PAYLOAD, REFUSED_SAG,
+                                 SAG_NOTE, dynamics_data, dynamics_program)
 from ._common import LivePanel
 from ..params import ScaraParams
 
 __all__ = ["dynamics_panel", "dynamics_declaration"]
-
-#: a quill sag above this (m) is flagged in the panel
-_SAG_NOTE = 0.003
 
 
 def dynamics_declaration(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: float = 10000.0,
@@ -30,37 +27,24 @@ def dynamics_declaration(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), 
                 angle_control(q[0], "theta1", "θ1 (°)"), angle_control(q[1], "theta2", "θ2 (°)"),
                 stroke_control(q[2], p), angle_control(q[3], "theta4", "θ4 (°)"),
                 Control("K_P3", "slider", "K_P3 (N/m)", K_P3, 100.0, 1e6, 0.1, scale="log", unit="N/m"))
-
-    def compute(v):
-        payload, theta2, d3, K_P3 = v["payload"], v["theta2"], v["d3"], v["K_P3"]
-        robot = p.with_payload(check_positive(payload, "payload", strict=False))
-        qq = np.array([math.radians(v["theta1"]), math.radians(theta2), d3, math.radians(v["theta4"])])
-        ctrl = PDGravityController(K_P=(1.0, 1.0, check_positive(K_P3, "K_P3"), 1.0), model=p.with_payload(0.0))
-        sag = -ctrl.steady_state_error(robot)[2]
-        if d3 + sag > p.d3_max:
-            raise ScaraError(f"with K_P3 = {K_P3:.3g} N/m the {payload:g} kg payload would sag {sag * 1e3:.1f} mm "
-                             f"under PD + gravity: the quill, at d3 = {d3:.2f} m, would need d3 = {d3 + sag:.3f} m, "
-                             f"past the end of its stroke (d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m). "
-                             "Raise K_P3 or lighten the payload.")
-        B = inertia(qq, robot)
-        return dict(q=qq, robot=robot, payload=payload, theta2=theta2, K_P3=K_P3, B=B,
-                    eig=np.linalg.eigvalsh(B), g=gravity(qq, robot), sag=sag)
-
-    def summary(s):
-        eig, sag = s["eig"], s["sag"]
-        rows = [("eigenvalues of B", ", ".join(f"{v:.4g}" for v in eig)),
-                ("condition number of B", f"{eig[-1] / eig[0]:.1f}"),
-                ("gravity torques g(q) (N m, N m, N, N m)", ", ".join(f"{v:.4g}" for v in s["g"])),
-                ("quill sag under PD + gravity (payload-free model)", f"{sag * 1e3:.3f} mm = m_L g0 / K_P3")]
-        notes = []
-        if sag > _SAG_NOTE:
-            notes.append(f"The quill sags {sag * 1e3:.1f} mm with K_P3 = {s['K_P3']:.3g} N/m: more than "
-                         f"{_SAG_NOTE * 1e3:.0f} mm, visible at the tool. A stiffer K_P3, integral action or a model "
-                         "that knows the payload (chapter 6) removes it.")
-        return rows, notes
-
-    return Panel("inertia matrix", "The inertia matrix: payload and configuration", controls, compute,
-                 (inertia_pair(),), summary, columns=3)
+    sag_refusal = ("with K_P3 = {K_P3:.3g} N/m the {payload:g} kg payload would sag {sag_mm:.1f} mm under PD + "
+                   "gravity: the quill, at d3 = {d3:.2f} m, would need d3 = {d3_need:.3f} m, past the end of its "
+                   f"stroke (d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m). Raise K_P3 or lighten the payload.")
+    program = PageProgram(
+        dynamics_program, DYNAMICS_INPUTS, dynamics_data(p), DYNAMICS_OUTPUTS,
+        refusals={REFUSED_SAG: Text(sag_refusal), REFUSED_PAYLOAD: Text("payload = {payload:g} must be >= 0"),
+                  REFUSED_GAIN: Text("K_P3 = {K_P3:g} must be > 0")},
+        traces=INERTIA_TRACES, titles={"inertia": INERTIA_TITLE},
+        rows=(("eigenvalues of B", Text("{eig1:.4g}, {eig2:.4g}, {eig3:.4g}, {eig4:.4g}")),
+              ("condition number of B", Text("{cond:.1f}")),
+              ("gravity torques g(q) (N m, N m, N, N m)", Text("{g1:.4g}, {g2:.4g}, {g3:.4g}, {g4:.4g}")),
+              ("quill sag under PD + gravity (payload-free model)", Text("{sag_mm:.3f} mm = m_L g0 / K_P3"))),
+        notes=((Flag("sag_note"),
+                Text("The quill sags {sag_mm:.1f} mm with K_P3 = {K_P3:.3g} N/m: more than "
+                     f"{SAG_NOTE * 1e3:.0f} mm, visible at the tool. A stiffer K_P3, integral action or a model that "
+                     "knows the payload (chapter 6) removes it.")),))
+    return program_panel("inertia matrix", "The inertia matrix: payload and configuration", controls, program,
+                         {"inertia": inertia_panel_figure}, widget="dynamics_panel", columns=3)
 
 
 def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: float = 10000.0,

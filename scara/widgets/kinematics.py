@@ -1,16 +1,20 @@
 """Live panels of chapter 1 (kinematics): move the joints and watch the arm and ``x_e``; type a target and
-see both inverse-kinematics solutions (or the reason it cannot be reached). Jupyter only."""
+see both inverse-kinematics solutions (or the reason it cannot be reached). Each move is one run of a page
+program of :mod:`scara.programs.kinematics` (the same kernel runs in JupyterLab and, translated, in the book's
+pages); the figures are drawn from its outputs."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from ..errors import UnreachableError, as_vector
-from ..kinematics import ikine, jacobian, pose
-from .._manipulability import manipulability
-from ..plots.kinematics import arm_pair, inverse_kinematics_pair
-from ..plots.panels import Control, Panel, angle_control, stroke_control
+from ..errors import MAX_ANGLE, UnreachableError, as_vector
+from ..kinematics import IK_OUTSIDE_ANNULUS, IK_OUTSIDE_STROKE
+from ..plots.kinematics import (ARM_TITLE, ARM_TRACES, IK_TITLE, IK_TRACES, arm_pair, arm_program_data,
+                                inverse_kinematics_pair)
+from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, stroke_control
+from ..programs.kinematics import (ARM_OUTPUTS, IK_ANGLE_TOO_LARGE, IK_OUTPUTS, inverse_kinematics_data,
+                                   inverse_kinematics_program, kinematics_program)
 from ._common import LivePanel
 from ..params import ScaraParams
 
@@ -18,29 +22,24 @@ __all__ = ["kinematics_panel", "inverse_kinematics_panel", "kinematics_declarati
 
 
 def kinematics_declaration(q=None, p=None) -> Panel:
-    """The direct-kinematics panel as data (:class:`~scara.plots.panels.Panel`); see :func:`kinematics_panel`."""
+    """The direct-kinematics panel as data (:class:`~scara.plots.panels.Panel`); see :func:`kinematics_panel`.
+    Its move is :func:`scara.programs.kinematics.kinematics_program`."""
     p = ScaraParams.resolve(p)
     q = np.array([0.0, math.radians(60.0), 0.5 * (p.d3_min + p.d3_max), 0.0]) if q is None else as_vector(q, "q")
     controls = (angle_control(q[0], "theta1", "θ1 (°)"), angle_control(q[1], "theta2", "θ2 (°)"),
                 stroke_control(q[2], p), angle_control(q[3], "theta4", "θ4 (°)"))
-
-    def compute(v):
-        qq = as_vector([math.radians(v["theta1"]), math.radians(v["theta2"]), v["d3"], math.radians(v["theta4"])], "q")
-        return dict(q=qq, x=pose(qq, p), det=float(np.linalg.det(jacobian(qq, p))), w=manipulability(qq, p))
-
-    def summary(s):
-        x = s["x"]
-        rows = [("p_x, p_y, p_z (m)", f"{x[0]:.4f}, {x[1]:.4f}, {x[2]:.4f}"),
-                ("phi = θ1 + θ2 + θ4 (°)", f"{math.degrees(x[3]):.2f}"),
-                ("det J_A (m²)", f"{s['det']:.4f}"),
-                ("w = |det J_A| (m²)", f"{s['w']:.4f}")]
-        notes = []
-        if s["w"] < 1e-3:
-            notes.append(f"The arm is singular here (w = {s['w']:.2g} m², θ2 = {math.degrees(s['q'][1]):.0f}°): "
-                         "it cannot move its tip along the line of its links.")
-        return rows, notes
-
-    return Panel("direct kinematics", "Direct kinematics: move a joint", controls, compute, (arm_pair(p),), summary)
+    pair = arm_pair(p)
+    program = PageProgram(
+        kinematics_program, ("theta1", "theta2", "d3", "theta4"), arm_program_data(p), ARM_OUTPUTS, {},
+        traces={pair.role: ARM_TRACES}, titles={pair.role: ARM_TITLE},
+        rows=(("p_x, p_y, p_z (m)", Text("{px:.4f}, {py:.4f}, {pz:.4f}")),
+              ("phi = θ1 + θ2 + θ4 (°)", Text("{phi:.2f}")),
+              ("det J_A (m²)", Text("{det:.4f}")),
+              ("w = |det J_A| (m²)", Text("{w:.4f}"))),
+        notes=((Flag("singular"), Text("The arm is singular here (w = {w:.2g} m², θ2 = {theta2:.0f}°): it cannot "
+                                       "move its tip along the line of its links.")),))
+    return program_panel("direct kinematics", "Direct kinematics: move a joint", controls, program,
+                         {pair.role: pair.build}, widget="kinematics_panel")
 
 
 def kinematics_panel(q=None, p=None) -> LivePanel:
@@ -57,47 +56,48 @@ def kinematics_panel(q=None, p=None) -> LivePanel:
     return LivePanel(kinematics_declaration(q, p))
 
 
-def _unreachable_text(target, p) -> str:
-    """Why a target is out of reach, in the panel's units (m and degrees)."""
-    r = math.hypot(target[0], target[1])
-    where = (f"the target (x, y, z) = ({target[0]:.3f}, {target[1]:.3f}, {target[2]:.3f}) m, "
-             f"φ = {math.degrees(target[3]):.1f}°")
-    if not (p.r_min - 1e-12 <= r <= p.r_max + 1e-12):
-        return (f"{where} is out of reach: it lies r = {r:.4f} m from the joint-1 axis, and the arm reaches "
-                f"from |a1 − a2| = {p.r_min:g} m to a1 + a2 = {p.r_max:g} m.")
-    return (f"{where} is out of reach: z = {target[2]:.3f} m needs the quill at d3 = d0 − z = "
-            f"{p.d0 - target[2]:.3f} m, outside its stroke d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m.")
+def _refusals(p) -> dict:
+    """Why a target is refused, in the panel's units (m and degrees), by the inverse-kinematics program's status:
+    :class:`~scara.plots.panels.Text` templates of its outputs and settings."""
+    where = "the target (x, y, z) = ({px:.3f}, {py:.3f}, {pz:.3f}) m, φ = {phi:.1f}°"
+    return {
+        IK_OUTSIDE_ANNULUS: Text(f"{where} is out of reach: it lies r = {{r:.4f}} m from the joint-1 axis, and the arm "
+                                 f"reaches from |a1 − a2| = {p.r_min:g} m to a1 + a2 = {p.r_max:g} m."),
+        IK_OUTSIDE_STROKE: Text(f"{where} is out of reach: z = {{pz:.3f}} m needs the quill at d3 = d0 − z = "
+                                f"{{d3:.3f}} m, outside its stroke d3_min to d3_max = {p.d3_min:g} to {p.d3_max:g} m."),
+        IK_ANGLE_TOO_LARGE: Text(f"x[3] = {{phi_rad:.6g}} rad is beyond the largest angle the package accepts, "
+                                 f"|theta| <= MAX_ANGLE = {MAX_ANGLE:g} rad (beyond it sin and cos lose all "
+                                 "precision); reduce the angle modulo 2 pi"),
+    }
 
 
 def inverse_kinematics_declaration(x=None, p=None) -> Panel:
     """The inverse-kinematics panel as data (:class:`~scara.plots.panels.Panel`); see
-    :func:`inverse_kinematics_panel`."""
+    :func:`inverse_kinematics_panel`. Its move is :func:`scara.programs.kinematics.inverse_kinematics_program`;
+    an unreachable start raises :class:`UnreachableError` with the message the panel shows."""
     p = ScaraParams.resolve(p)
     x = np.array([0.18, 0.20, 0.5, 0.0]) if x is None else as_vector(x, "x")
     controls = (Control("px", "number", "p_x (m)", float(x[0]), step=0.01, unit="m"),
                 Control("py", "number", "p_y (m)", float(x[1]), step=0.01, unit="m"),
                 Control("pz", "number", "p_z (m)", float(x[2]), step=0.01, unit="m"),
                 Control("phi", "number", "phi (°)", math.degrees(x[3]), step=1.0, unit="°"))
-
-    def compute(v):
-        target = as_vector([v["px"], v["py"], v["pz"], math.radians(v["phi"])], "target")
-        try:
-            return dict(target=target, q={elbow: ikine(target, p, elbow=elbow) for elbow in (+1, -1)})
-        except UnreachableError as exc:
-            raise UnreachableError(_unreachable_text(target, p)) from exc
-
-    def summary(s):
-        rows = [(f"elbow {elbow:+d}: θ1, θ2, θ4 (°); d3 (m)",
-                 f"{math.degrees(q[0]):.2f}, {math.degrees(q[1]):.2f}, {math.degrees(q[3]):.2f}; {q[2]:.4f}")
-                for elbow, q in s["q"].items()]
-        notes = []
-        if abs(math.sin(s["q"][1][1])) < 1e-3:
-            notes.append("The two elbows coincide: the target is on the rim of the workspace, where the arm is "
-                         "singular.")
-        return rows, notes
-
-    return Panel("inverse kinematics", "Inverse kinematics: type a target", controls, compute,
-                 (inverse_kinematics_pair(p),), summary, columns=4)
+    pair = inverse_kinematics_pair(p)
+    row = "{theta1_%s:.2f}, {theta2_%s:.2f}, {theta4_%s:.2f}; {d3:.4f}"
+    program = PageProgram(
+        inverse_kinematics_program, ("px", "py", "pz", "phi"), inverse_kinematics_data(p), IK_OUTPUTS,
+        _refusals(p), traces={pair.role: IK_TRACES}, titles={pair.role: IK_TITLE},
+        rows=(("elbow +1: θ1, θ2, θ4 (°); d3 (m)", Text(row % (("up",) * 3))),
+              ("elbow -1: θ1, θ2, θ4 (°); d3 (m)", Text(row % (("down",) * 3)))),
+        notes=((Flag("coincide"), Text("The two elbows coincide: the target is on the rim of the workspace, where the "
+                                       "arm is singular.")),))
+    panel = program_panel("inverse kinematics", "Inverse kinematics: type a target", controls, program,
+                          {pair.role: pair.build}, widget="inverse_kinematics_panel", columns=4)
+    settings = panel.defaults()
+    out = np.zeros(IK_OUTPUTS.size)
+    status = int(program.kernel(program.pack(settings, {c.name: c for c in controls}), program.data, out))
+    if status in (IK_OUTSIDE_ANNULUS, IK_OUTSIDE_STROKE):
+        raise UnreachableError(program.refusals[status].format(program.values(out, settings)))
+    return panel
 
 
 def inverse_kinematics_panel(x=None, p=None) -> LivePanel:

@@ -1,20 +1,20 @@
 """Live panel of chapter 2 (manipulability): move theta1 and theta2 and watch the velocity and force
-ellipses change on the arm. Jupyter only."""
+ellipses change on the arm. Every move is one run of the page program
+:func:`scara.programs.manipulability.ellipse_program`, drawn by the bindings of
+:data:`scara.plots.manipulability.ELLIPSE_TRACES` (the same in JupyterLab and in the book's pages)."""
 from __future__ import annotations
 
 import math
 
-from ..errors import ScaraError, as_vector
-from .._manipulability import force_ellipsoid, manipulability, velocity_ellipsoid
-from ..plots.manipulability import ellipse_pair
-from ..plots.panels import Control, Panel, angle_control, start_value
+from ..errors import ScaraError
+from ..plots.manipulability import ELLIPSE_TITLE, ELLIPSE_TRACES, ellipse_panel_figure
+from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, start_value
+from ..programs.manipulability import (ELLIPSE_INPUTS, ELLIPSE_OUTPUTS, REFUSED_SCALE, ellipse_data,
+                                       ellipse_program)
 from ._common import LivePanel
 from ..params import ScaraParams
 
 __all__ = ["manipulability_panel", "manipulability_declaration"]
-
-#: below this ratio of the smaller to the larger velocity semi-axis the arm is treated as singular
-_SINGULAR_RATIO = 1e-6
 
 
 def manipulability_declaration(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15,
@@ -26,37 +26,23 @@ def manipulability_declaration(theta1: float = 0.0, theta2: float = math.pi / 3,
         raise ScaraError(f"scale = {sc0:g} must be > 0 (metres drawn per m/s and per N)")
     controls = (angle_control(theta1, "theta1", "θ1 (°)"), angle_control(theta2, "theta2", "θ2 (°)"),
                 Control("scale", "slider", "ellipse scale", sc0, 0.0, 0.5, 0.01, unit="m per m/s"))
-
-    def compute(v):
-        theta1, theta2, scale = v["theta1"], v["theta2"], v["scale"]
-        if not scale > 0:
-            raise ScaraError(f"the ellipse scale is {scale:g}: it must be above 0 to draw the ellipses "
-                             "(metres drawn per m/s and per N)")
-        q = as_vector([math.radians(theta1), math.radians(theta2), 0.5 * (p.d3_min + p.d3_max), 0.0], "q")
-        v = velocity_ellipsoid(q, p, rows=(0, 1))
-        singular = v.lengths[1] < _SINGULAR_RATIO * v.lengths[0]
-        return dict(q=q, theta=(theta1, theta2), scale=scale, w=manipulability(q, p), v=v,
-                    f=None if singular else force_ellipsoid(q, p, rows=(0, 1)))
-
-    def summary(s):
-        v, f = s["v"], s["f"]
-        major = math.degrees(math.atan2(v.axes[1, 0], v.axes[0, 0]))
-        notes = []
-        if f is None:
-            force = "unbounded along the links (singular arm)"
-            notes.append(f"The arm is singular at θ2 = {s['theta'][1]:.0f}°: it cannot move its tip along the line "
-                         "of its links, and so it can resist any force along that line with no torque; the "
-                         "force ellipse degenerates into an infinitely long segment.")
-        else:
-            force = ", ".join(f"{x:.4g}" for x in f.lengths)
-        rows = [("velocity semi-axes σ (m/s, unit joint-speed norm)", ", ".join(f"{x:.4f}" for x in v.lengths)),
-                ("force semi-axes 1/σ (N, unit torque norm)", force),
-                ("major velocity axis direction (°)", f"{major:.1f}"),
-                ("vertical semi-axis (both)", "1 (z is decoupled)")]
-        return rows, notes
-
-    return Panel("ellipses", "Velocity and force ellipses: move the arm", controls, compute, (ellipse_pair(p),),
-                 summary, columns=3)
+    program = PageProgram(
+        ellipse_program, ELLIPSE_INPUTS, ellipse_data(p), ELLIPSE_OUTPUTS,
+        refusals={REFUSED_SCALE: Text("the ellipse scale is {scale:g}: it must be above 0 to draw the ellipses "
+                                      "(metres drawn per m/s and per N)")},
+        traces=ELLIPSE_TRACES, titles={"ellipses": ELLIPSE_TITLE},
+        rows=(("velocity semi-axes σ (m/s, unit joint-speed norm)", Text("{sigma1:.4f}, {sigma2:.4f}")),
+              ("force semi-axes 1/σ (N, unit torque norm; inf: unbounded along the links, singular arm)",
+               Text("{force1:.4g}, {force2:.4g}")),
+              ("major velocity axis direction (°)", Text("{major:.1f}")),
+              ("vertical semi-axis (both)", Text("1 (z is decoupled)"))),
+        notes=((Flag("singular"),
+                Text("The arm is singular at θ2 = {theta2:.0f}°: it cannot move its tip along the line of its links, "
+                     "and so it can resist any force along that line with no torque; the force ellipse is unbounded: "
+                     "it degenerates into an infinitely long segment.")),))
+    return program_panel("ellipses", "Velocity and force ellipses: move the arm", controls, program,
+                         {"ellipses": lambda values: ellipse_panel_figure(values, p)}, widget="manipulability_panel",
+                         columns=3)
 
 
 def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15, p=None) -> LivePanel:
@@ -64,6 +50,7 @@ def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale
     top view of the arm with its horizontal velocity and force ellipses is redrawn in place on every move, with
     ``w`` and the semi-axes listed. The starting angles are given here in rad (within [-180°, 180°]) and the
     scale within (0, 0.5]; values outside these ranges raise :class:`ScaraError`. A scale of 0 set on the
-    slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table says
-    so instead of printing a huge number. Its ``declaration`` is :func:`manipulability_declaration`."""
+    slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table lists
+    its long semi-axis as ``inf`` instead of a huge number, and a note says why. Its ``declaration`` is
+    :func:`manipulability_declaration`."""
     return LivePanel(manipulability_declaration(theta1, theta2, scale, p))
