@@ -37,7 +37,7 @@ Discrete-time stability (Euler, sampling period ``dt``). Linearising one step,
 
 The package, one job per module (imports flow down this list): :mod:`.records` (the constants, the named
 records the loops take and their packers, the ``STATUS_*`` codes), :mod:`.kernels` (the compiled loops and
-solves), :mod:`.result` (:class:`ClikResult`, :class:`TransposeStability`), :mod:`.checks` (the input and
+solves, and the check kernels behind the refusals), :mod:`.result` (:class:`ClikResult`, :class:`TransposeStability`), :mod:`.checks` (the input and
 option checks), :mod:`.stability` (the stability limits (4.6), (4.12), (4.19) checked before a run) and
 :mod:`.api` (:func:`clik`, :func:`clik2`, :func:`transpose_stability`, :func:`second_order_gains`,
 :func:`start_configuration`, :func:`dexterity`).

@@ -8,9 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ScaraError, ShapeError, UnreachableError, as_array, check_angles, check_positive, is_bool
-from ..kinematics import _elbow_sign, check_reachable, is_reachable, pose_kernel
+from ..kinematics import _elbow_sign, check_reachable, is_reachable
 from ..params import ScaraParams
-from .kernels import _first_unclear_sample
+from .kernels import RES_ERROR, RES_SIZE, _damping_ceiling, _first_unclear_sample, _initial_error_check
 from .records import _METHOD_CODE, _OBJECTIVE_CODE, COMPONENTS, MAX_DAMPING_REACH, METHODS, OBJECTIVES
 
 #: the options of :func:`~scara.clik` that only some methods use: the methods that use each, and what it sets
@@ -136,14 +136,21 @@ def _first_order_options(method, relaxed, k0, objective, damping, damping_thresh
     return kept, k0v, lam2, w_thr
 
 
+def _damping_text() -> str:
+    """The refusal of a damping above :func:`~.kernels._damping_ceiling`, as a template with the fields
+    ``damping`` and ``damping_limit`` (m)."""
+    return (f"damping = {{damping:g}} m is above the largest damping accepted, {MAX_DAMPING_REACH:g} times the "
+            "reach a1 + a2: {damping_limit:g} m (a larger lambda only freezes the arm)")
+
+
 def _damping(damping, damping_threshold, p):
     """``(lambda^2, w_thr)`` of the damped least squares (4.15): ``0 <= damping <= MAX_DAMPING_REACH (a1 + a2)``
-    (m), and the threshold (m^2) > 0 or None (returned as 0: the damping applies everywhere)."""
+    (m, :func:`~.kernels._damping_ceiling`), and the threshold (m^2) > 0 or None (returned as 0: the damping
+    applies everywhere)."""
     lam = check_positive(damping, "damping", strict=False)
-    lam_max = MAX_DAMPING_REACH * p.r_max
+    lam_max = _damping_ceiling(float(p.r_max))
     if lam > lam_max:
-        raise ScaraError(f"damping = {lam:g} m is above the largest damping accepted, {MAX_DAMPING_REACH:g} times the "
-                         f"reach a1 + a2: {lam_max:g} m (a larger lambda only freezes the arm)")
+        raise ScaraError(_damping_text().format(damping=lam, damping_limit=lam_max))
     if damping_threshold is None:
         return lam * lam, 0.0
     return lam * lam, check_positive(damping_threshold, "damping_threshold")
@@ -164,12 +171,18 @@ def _check_q0(q0, p) -> np.ndarray:
     return q
 
 
+def _initial_error_text(component: str) -> str:
+    """The refusal of a start whose initial error on ``component`` is above the error bound, as a template with
+    the fields ``e0`` and ``max_error``."""
+    return (f"the start configuration q0 leaves an initial {component} error of {{e0:.4g}}, above max_error = "
+            "{max_error:g}; pass a larger max_error to allow it")
+
+
 def _check_initial_error(x0_ref, q0, p, kept, max_err):
-    """Refuse a start whose pose (1.5) leaves an error on a kept component above ``max_err``."""
-    x0 = np.empty(4)
-    pose_kernel(q0, p.a1, p.a2, p.d0, x0)
-    e0 = np.abs(x0_ref - x0) * kept
-    if e0.max() > max_err:
-        i = int(np.argmax(e0))
-        raise ScaraError(f"the start configuration q0 leaves an initial {COMPONENTS[i]} error of {e0[i]:.4g}, "
-                         f"above max_error = {max_err:g}; pass a larger max_error to allow it")
+    """Refuse a start whose pose (1.5) leaves an error on a kept component above ``max_err``
+    (:func:`~.kernels._initial_error_check`)."""
+    res = np.zeros(RES_SIZE)
+    i = _initial_error_check(np.ascontiguousarray(x0_ref, float), np.ascontiguousarray(q0, float), float(p.a1),
+                             float(p.a2), float(p.d0), np.ascontiguousarray(kept, float), float(max_err), res)
+    if i >= 0:
+        raise ScaraError(_initial_error_text(COMPONENTS[i]).format(e0=res[RES_ERROR], max_error=max_err))

@@ -1,6 +1,10 @@
 """The compiled loops and solves of the CLIK (see :mod:`scara._compile`): the first-order loop (4.4), (4.8),
 (4.13), (4.15), the second-order loop (4.16), the structured solves of ``J_A s = v`` they call each step, the
-largest eigenvalue of ``J_A J_A^T K`` along a reference (4.12) and the one-pass reachability test of a reference.
+largest eigenvalue of ``J_A J_A^T K`` along a reference (4.12) and the one-pass reachability test of a reference;
+then the checks made before a run (the stability limits (4.6), (4.12), (4.14), (4.19), the initial error, the
+damping's ceiling) and the diagnosis of a run that stopped. Those return codes and numbers: :func:`scara.clik`
+and :func:`scara.clik2` word them into their refusals, and the CLIK panel's page program
+(:mod:`scara.programs.clik`) calls the same kernels.
 
 The closed-form kinematics of :mod:`scara.kinematics` run inside (its planar building blocks, inlined); the joint
 values, the Jacobian's entries and the step's vectors live in scalars and 4-tuples, so nothing is allocated per
@@ -13,8 +17,8 @@ import math
 from .._compile import kernel
 from ..kinematics import (elbow_cosine, planar_det, planar_jacobian, planar_jacobian_at, planar_jacobian_dot,
                           planar_position, planar_trig)
-from .records import (METHOD_INVERSE, METHOD_PSEUDOINVERSE, METHOD_TRANSPOSE, OBJECTIVE_SIN2, STATUS_DONE,
-                      STATUS_ERROR_BOUND, STATUS_NONFINITE, STATUS_SINGULAR, _SINGULAR_TOL)
+from .records import (MAX_DAMPING_REACH, METHOD_INVERSE, METHOD_PSEUDOINVERSE, METHOD_TRANSPOSE, OBJECTIVE_SIN2,
+                      STATUS_DONE, STATUS_ERROR_BOUND, STATUS_NONFINITE, STATUS_SINGULAR, _SINGULAR_TOL)
 
 
 @kernel
@@ -383,3 +387,179 @@ def _first_unclear_sample(x, r2_lo, r2_hi, d0, d3_lo, d3_hi):
         if not (r2 >= r2_lo and r2 <= r2_hi and d3 >= d3_lo and d3 <= d3_hi):
             return k
     return -1
+
+
+# --------------------------------------------------------------------------------------------------
+# the checks run before a loop, and the diagnosis of a loop that stopped: one definition each, called by
+# :func:`~scara.clik` / :func:`~scara.clik2` (which word the refusals) and by the chapter's page program
+# --------------------------------------------------------------------------------------------------
+#: codes of :func:`_first_order_check`
+CHECK_STABLE = 0
+CHECK_GAIN = 1
+CHECK_K0 = 2
+CHECK_TRANSPOSE = 3
+CHECK_TRANSPOSE_NONFINITE = 4
+#: entries of the ``res`` vector the check kernels fill (the numbers their refusals name)
+RES_COMPONENT = 0
+RES_LIMIT = 1
+RES_K0_LIMIT = 2
+RES_MU_MAX = 3
+RES_WORST = 4
+RES_SCALE = 5
+RES_KP = 6
+RES_KD = 7
+RES_RHO = 8
+RES_LOW = 9
+RES_HIGH = 10
+RES_ERROR = 11
+#: the length of ``res``
+RES_SIZE = 12
+
+
+@kernel
+def _gain_limit_component(K, keep, dt):
+    """The first kept component ``i`` whose gain breaks ``dt K_i < 2``, the limit (4.6) of Euler's step
+    ``e_(k+1) = (1 - dt K) e_k`` of the inverse and the pseudo-inverse, or -1."""
+    for i in range(4):
+        if K[i] * dt >= 2.0 and keep[i] > 0.0:
+            return i
+    return -1
+
+
+@kernel
+def _null_space_limit(objective, dt, a1, a2):
+    """The largest null-space gain (4.14): ``k0 < 2 / (dt max |d^2 w_0 / d theta2^2|)``, the curvature being 2
+    for ``w_0 = sin^2 theta2`` and ``a1 a2`` for the manipulability."""
+    curv = 2.0 if objective == OBJECTIVE_SIN2 else a1 * a2
+    return 2.0 / (dt * curv)
+
+
+@kernel
+def _transpose_worst(xr, K, a1, a2, elbow):
+    """``(k, mu_max)``: the first sample where ``mu_max(J_A J_A^T K)`` (4.12) peaks along the reference ``xr``
+    (N, 4) and its value, as :func:`_transpose_rate_kernel` computes it at each sample, with nothing
+    allocated; ``mu_max`` is the first non-finite value met, if any (and ``k`` its sample)."""
+    kd = (K[0], K[1], K[3])
+    sk = (math.sqrt(K[0]), math.sqrt(K[1]), math.sqrt(K[3]))
+    best = -math.inf
+    kb = 0
+    for k in range(xr.shape[0]):
+        mu = max(_sym3_max_eig(_transpose_block(xr[k, 0], xr[k, 1], a1, a2, elbow, kd, sk)), K[2])
+        if not math.isfinite(mu):
+            return k, mu
+        if mu > best:
+            best = mu
+            kb = k
+    return kb, best
+
+
+@kernel
+def _first_order_check(method, K, keep, dt, k0, objective, xr, a1, a2, theta2_start, res):
+    """The discrete-time stability limits of a first-order run, checked before it: ``dt K_i < 2`` on every
+    kept component for the inverse and the pseudo-inverse (4.6), ``k0`` below :func:`_null_space_limit` for a
+    pseudo-inverse with a null-space term (4.14), and ``dt mu_max < 2`` along the reference ``xr`` for the
+    transpose (4.12), on the elbow of the start (``theta2_start < 0``: elbow -1).
+
+    ``method`` and ``objective`` are the loop's codes, ``K`` and ``keep`` (4,) arrays. Returns
+    :data:`CHECK_STABLE`, or the limit broken (:data:`CHECK_GAIN`, :data:`CHECK_K0`, :data:`CHECK_TRANSPOSE`,
+    :data:`CHECK_TRANSPOSE_NONFINITE`) with the numbers its refusal names written into ``res``
+    (:data:`RES_SIZE`): the component, ``2 / dt``, the ``k0`` limit, ``mu_max``, the sample where it peaks and
+    the scale ``2 / (dt mu_max)`` by which ``K`` may be multiplied.
+    """
+    limit = 2.0 / dt
+    res[RES_LIMIT] = limit
+    if method != METHOD_TRANSPOSE:
+        i = _gain_limit_component(K, keep, dt)
+        if i >= 0:
+            res[RES_COMPONENT] = i
+            return CHECK_GAIN
+        if method == METHOD_PSEUDOINVERSE and k0 > 0.0:
+            k0_lim = _null_space_limit(objective, dt, a1, a2)
+            res[RES_K0_LIMIT] = k0_lim
+            if k0 >= k0_lim:
+                return CHECK_K0
+        return CHECK_STABLE
+    elbow = -1.0 if theta2_start < 0.0 else 1.0
+    if _transpose_check_kernel(xr, K, a1, a2, elbow, limit) < 0:
+        return CHECK_STABLE
+    kw, mu = _transpose_worst(xr, K, a1, a2, elbow)
+    res[RES_MU_MAX] = mu
+    res[RES_WORST] = kw
+    if not math.isfinite(mu):
+        return CHECK_TRANSPOSE_NONFINITE
+    res[RES_SCALE] = limit / mu
+    return CHECK_TRANSPOSE
+
+
+@kernel
+def _quadratic_pole_radius(a, b):
+    """The largest modulus of the roots of ``z^2 - (2 - a) z + (1 - a + b)``, the characteristic polynomial
+    (4.19) of one component of the second-order law with ``a = dt K_D``, ``b = dt^2 K_P``: ``(|2 - a| +
+    sqrt(disc)) / 2`` for real roots (``disc = a^2 - 4 b >= 0``), else ``sqrt(1 - a + b)``."""
+    c1 = 2.0 - a
+    c0 = 1.0 - a + b
+    disc = c1 * c1 - 4.0 * c0
+    if disc >= 0.0:
+        return 0.5 * (abs(c1) + math.sqrt(disc))
+    return math.sqrt(c0)
+
+
+@kernel
+def _second_order_check(K_P, K_D, dt, res):
+    """Jury's test of (4.19) on each component: with ``a = dt K_D``, ``b = dt^2 K_P`` both poles lie inside the
+    unit circle iff ``b < a`` and ``2 a - b < 4``. Returns the first component that fails, or -1; for it
+    ``res`` receives ``K_P``, ``K_D``, the largest pole modulus (:func:`_quadratic_pole_radius`) and the bounds
+    ``dt K_P`` and ``2 / dt + dt K_P / 2`` of ``K_D``."""
+    for i in range(4):
+        a = dt * K_D[i]
+        b = dt * dt * K_P[i]
+        if not (b < a and 2 * a - b < 4):
+            res[RES_COMPONENT] = i
+            res[RES_KP] = K_P[i]
+            res[RES_KD] = K_D[i]
+            res[RES_RHO] = _quadratic_pole_radius(a, b)
+            res[RES_LOW] = b / dt
+            res[RES_HIGH] = (4 + b) / (2 * dt)
+            return i
+    return -1
+
+
+@kernel
+def _initial_error_check(x0_ref, q0, a1, a2, d0, keep, max_err, res):
+    """The kept component ``i`` with the largest initial error ``|x_d(0) - x_e(q0)|`` (1.5) when that error is
+    above ``max_err`` (the error is written into ``res[RES_ERROR]``), or -1: a start the loop would stop at
+    at once."""
+    sc = planar_trig(q0[0], q0[1])
+    x0, x1 = planar_position(sc, a1, a2)
+    x = (x0, x1, d0 - q0[2], q0[0] + q0[1] + q0[3])
+    worst = -1.0
+    iw = 0
+    for i in range(4):
+        ei = abs(x0_ref[i] - x[i]) * keep[i]
+        if ei > worst:
+            worst = ei
+            iw = i
+    if worst > max_err:
+        res[RES_ERROR] = worst
+        return iw
+    return -1
+
+
+@kernel
+def _damping_ceiling(r_max):
+    """The largest damping ``lambda`` (m) of (4.15): :data:`MAX_DAMPING_REACH` times the reach ``r_max``."""
+    return MAX_DAMPING_REACH * r_max
+
+
+@kernel
+def _bound_component(e, k, keep):
+    """The kept component with the largest error ``|e[k, i]|`` at the step ``k`` where a loop stopped on its
+    error bound (the first one on a tie)."""
+    best = -1.0
+    ib = 0
+    for i in range(4):
+        v = abs(e[k, i]) * keep[i]
+        if v > best:
+            best = v
+            ib = i
+    return ib

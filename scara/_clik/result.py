@@ -9,9 +9,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ScaraError, UnstableError, check_number
+from .kernels import _bound_component
 from .records import _CAUSES, COMPONENTS, STATUS_ERROR_BOUND, STATUS_SINGULAR
 
 __all__ = ["ClikResult", "TransposeStability"]
+
+
+def _settle_text(settle: float) -> str:
+    """The refusal of a settling time not shorter than the run, as a template with the field ``run_length``."""
+    return f"settle = {settle:g} s must lie in [0, {{run_length:g}}) s, the run's length"
 
 
 @dataclass
@@ -86,7 +92,7 @@ class ClikResult:
         length = self.t[-1] - self.t[0]
         settle = check_number(settle, "settle", unit="s")
         if not 0.0 <= settle < length:
-            raise ScaraError(f"settle = {settle:g} s must lie in [0, {length:g}) s, the run's length")
+            raise ScaraError(_settle_text(settle).format(run_length=length))
         after = self.t >= self.t[0] + settle - 1e-12
         ep = self.position_error[after]
         return {
@@ -125,18 +131,27 @@ class TransposeStability:
         return self.scale_limit > 1.0
 
 
-def _fail(info, result: ClikResult, what: str) -> UnstableError:
-    """The :class:`~scara.errors.UnstableError` of a loop that stopped with ``info = [status, step]``: the message
-    gives the time and the cause; ``exc.result`` holds the run up to that step, ``exc.time`` and ``exc.cause``."""
-    status, k = int(info[0]), int(info[1])
-    cause = _CAUSES[status]
+def _divergence_text(what: str, status: int, component: str = "") -> str:
+    """The message of a loop that stopped with ``status`` (a ``STATUS_*`` code), as a template with the fields
+    ``t_fail`` (s), ``step_fail``, and ``e_fail`` (the error of ``component`` past the bound) or ``theta2_fail``
+    (rad) and ``w_fail`` (m^2, a singular Jacobian)."""
     extra = ""
     if status == STATUS_ERROR_BOUND:
-        i = int(np.argmax(np.abs(result.e[k]) * result.kept))
-        extra = f" ({COMPONENTS[i]} error {result.e[k, i]:.4g})"
+        extra = f" ({component} error {{e_fail:.4g}})"
     elif status == STATUS_SINGULAR:
-        extra = f" (theta2 = {result.q[k, 1]:.6g} rad, manipulability {result.w[k]:.3g} m^2)"
-    exc = UnstableError(f"{what} diverged at t = {result.t[k]:.4f} s (step {k}): {cause}{extra}")
+        extra = " (theta2 = {theta2_fail:.6g} rad, manipulability {w_fail:.3g} m^2)"
+    return f"{what} diverged at t = {{t_fail:.4f}} s (step {{step_fail:.0f}}): {_CAUSES[status]}{extra}"
+
+
+def _fail(info, result: ClikResult, what: str) -> UnstableError:
+    """The :class:`~scara.errors.UnstableError` of a loop that stopped with ``info = [status, step]``: the message
+    (:func:`_divergence_text`) gives the time and the cause; ``exc.result`` holds the run up to that step,
+    ``exc.time`` and ``exc.cause``."""
+    status, k = int(info[0]), int(info[1])
+    cause = _CAUSES[status]
+    i = _bound_component(result.e, k, np.ascontiguousarray(result.kept, float))
+    exc = UnstableError(_divergence_text(what, status, COMPONENTS[i]).format(
+        t_fail=result.t[k], step_fail=k, e_fail=result.e[k, i], theta2_fail=result.q[k, 1], w_fail=result.w[k]))
     cut = slice(0, k + 1)
     exc.result = dataclasses.replace(
         result, t=result.t[cut], q=result.q[cut], qd=result.qd[cut],

@@ -3,7 +3,9 @@ manipulability along the path, the drift of a relaxed component, the transpose's
 inverse near a singularity, the second-order CLIK's joint reference, and a gain sweep with slider steps.
 
 Every builder takes :class:`scara._clik.ClikResult` objects (and computes nothing but what it draws, except
-:func:`gain_slider_figure`, which runs :func:`scara._clik.clik` for each slider step). Long runs are thinned to
+:func:`gain_slider_figure`, which runs :func:`scara._clik.clik` for each slider step), but the live panel's
+:func:`clik_panel_figure`, which draws the outputs of its page program (:mod:`scara.programs.clik`), already
+thinned, through the bindings of :func:`clik_panel_bindings`. Long runs are thinned to
 about ``points`` samples per trace; error curves keep the largest value of every thinned interval (an
 envelope), so no peak is lost on a log scale.
 """
@@ -22,8 +24,9 @@ from ._common import (
     envelope, run_colour, run_dash, run_label, slider, thin,
 )
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, FIGURE_BUDGET
+from ..programs.clik import PANEL_METHODS
 from .layout import finish_layout, stacked_axes
-from .panels import FigurePair
+from .panels import Flag, Text
 
 __all__ = [
     "METHOD_LABELS",
@@ -46,18 +49,26 @@ __all__ = [
     "comparison_rows",
     "METHOD_CHOICES",
     "run_method",
-    "clik_panel_series",
-    "clik_panel_title",
+    "CLIK_PANEL_SERIES",
+    "CLIK_PANEL_ROLES",
+    "CLIK_PANEL_TITLE",
+    "clik_panel_bindings",
     "clik_panel_figure",
-    "clik_panel_update",
-    "clik_pair",
 ]
 
 #: the live panel's choices of method: its dropdown labels (the legend names, ``METHOD_LABELS``; the
 #: pseudo-inverse's also names its null-space term) and the method each runs (:func:`run_method`)
 METHOD_CHOICES = {METHOD_LABELS[m] + (" + null space" if m == "pseudoinverse" else ""): m for m in METHOD_LABELS}
-#: the roles of :func:`clik_panel_figure`'s traces, in order
-CLIK_PANEL_ROLES = ("position error", "orientation error", "manipulability")
+#: the rows of :func:`clik_panel_figure`: the role of their traces, the outputs they draw (``ep_m``, ``eo_m``,
+#: ``w_m`` for each method ``m`` of the program) and the axis title
+CLIK_PANEL_SERIES = (("position error", "ep", "‖e_p‖ (m)"), ("orientation error", "eo", "|e_φ| (rad)"),
+                     ("manipulability", "w", "w (m²)"))
+#: the roles of :func:`clik_panel_figure`'s traces, in order: each row's trace of each method
+CLIK_PANEL_ROLES = tuple(f"{row} · {m}" for row, _, _ in CLIK_PANEL_SERIES for m in PANEL_METHODS)
+#: the title of :func:`clik_panel_figure`: the method and the largest position error after 0.1 s (mm)
+CLIK_PANEL_TITLE = Text("{method}: max ‖e_p‖ after 0.1 s = {max_ep_mm:.4g} mm")
+#: the pseudo-inverse's legend name (:func:`~scara.plots._common.run_label` of its run)
+CLIK_PSEUDO_NAME = Text(METHOD_LABELS["pseudoinverse"] + " ({relaxed} relaxed)")
 
 
 #: default gain scales of :func:`gain_slider_figure`: the seed (1), up to and past the transpose's limit (~3.92
@@ -525,47 +536,38 @@ def comparison_rows(results, settle: float = 0.1) -> list[dict]:
     return rows
 
 
-def clik_panel_series(result, points: int = 800) -> list:
-    """The ``(t, y)`` arrays of :func:`clik_panel_figure`'s traces, in the order of its roles: the envelopes of
-    the position and orientation errors and the thinned manipulability."""
-    r = result
-    series = [envelope(r.t, r.position_error, points), envelope(r.t, r.orientation_error, points)]
-    idx = thin(len(r.t), points)
-    series.append((r.t[idx], r.w[idx]))
-    return series
+def clik_panel_bindings() -> dict:
+    """The bindings of :func:`clik_panel_figure`'s traces to the outputs of the CLIK panel's program
+    (:func:`scara.programs.clik.clik_program`), by role (:data:`CLIK_PANEL_ROLES`): each method's curves
+    (``ep_m``, ``eo_m``, ``w_m``), shown only for the method run (``show_m``), and the pseudo-inverse's legend
+    name, which names its relaxed component. The time axes do not change with the settings: not bound."""
+    traces = {}
+    for row, key, _ in CLIK_PANEL_SERIES:
+        for m in PANEL_METHODS:
+            props = {"y": f"{key}_{m}", "visible": Flag(f"show_{m}")}
+            if m == "pseudoinverse" and key != "w":
+                props["name"] = CLIK_PSEUDO_NAME
+            traces[f"{row} · {m}"] = props
+    return {"clik": traces}
 
 
-def clik_panel_title(state) -> str:
-    """The live panel's title: the method and the largest position error after 0.1 s (mm)."""
-    return (f"{run_label(state['method'])}: max ‖e_p‖ after 0.1 s = "
-            f"{state['summary']['max_position_error'] * 1e3:.4g} mm")
-
-
-def _clik_panel_traces(state, points):
-    r, colour = state["result"], run_colour(state["method"])
-    return [dict(x=x, y=y, name=run_label(r) if k < 2 else "w", line=dict(color=colour, width=1.5))
-            for k, (x, y) in enumerate(clik_panel_series(r, points))]
-
-
-def clik_panel_figure(state, points: int = 800, height: int = 620) -> go.Figure:
-    """The CLIK panel's figure for ``state`` (``method``, ``result``, ``summary``): the position error (log),
-    the orientation error (log) and the manipulability of the run against time, stacked."""
+def clik_panel_figure(values, height: int = 620) -> go.Figure:
+    """The CLIK panel's figure for ``values`` (the outputs of :func:`scara.programs.clik.clik_program` with the
+    settings, :meth:`~scara.plots.panels.PageProgram.run`): the position error (log), the orientation error
+    (log) and the manipulability of the run against time, stacked, in the method's colour. Each row holds a
+    trace per method (roles :data:`CLIK_PANEL_ROLES`), the method run shown; the title gives the method and
+    the largest position error after 0.1 s (mm, :data:`CLIK_PANEL_TITLE`)."""
     fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07)
-    for k, trace in enumerate(_clik_panel_traces(state, points)):
-        fig.add_trace(dict(type="scatter", mode="lines", showlegend=k == 0, **trace), row=k + 1, col=1)
-    finish_layout(fig, clik_panel_title(state), height)
-    stacked_axes(fig, ("‖e_p‖ (m)", "|e_φ| (rad)", "w (m²)"), log=(1, 2))
+    for k, (_, key, _) in enumerate(CLIK_PANEL_SERIES):
+        x = values["t_thin" if key == "w" else "t_env"]
+        for m in PANEL_METHODS:
+            if key == "w":
+                name = "w"
+            else:
+                name = CLIK_PSEUDO_NAME.format(values) if m == "pseudoinverse" else run_label(m)
+            fig.add_trace(dict(type="scatter", mode="lines", x=x, y=values[f"{key}_{m}"], name=name,
+                               showlegend=k == 0, visible=bool(values[f"show_{m}"] != 0),
+                               line=dict(color=run_colour(m), width=1.5)), row=k + 1, col=1)
+    finish_layout(fig, CLIK_PANEL_TITLE.format(values), height)
+    stacked_axes(fig, tuple(axis for _, _, axis in CLIK_PANEL_SERIES), log=(1, 2))
     return fig
-
-
-def clik_panel_update(state, points: int = 800) -> dict:
-    """What changes in :func:`clik_panel_figure` from one run to another: each trace's data, name and colour
-    (by role, ``CLIK_PANEL_ROLES``) and the title."""
-    return dict(traces=dict(zip(CLIK_PANEL_ROLES, _clik_panel_traces(state, points))), title=clik_panel_title(state))
-
-
-def clik_pair(points: int = 800) -> FigurePair:
-    """The CLIK panel's figure pair (:func:`clik_panel_figure`, :func:`clik_panel_update`)."""
-    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
-    return FigurePair("clik", lambda state: clik_panel_figure(state, points),
-                      lambda state: clik_panel_update(state, points), CLIK_PANEL_ROLES)
