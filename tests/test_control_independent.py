@@ -370,6 +370,7 @@ def test_bad_design_inputs_raise(jref):
 # the live panel
 # --------------------------------------------------------------------------------------------------
 def test_live_panel_offers_the_independent_joint_controller(traj):
+    from scara.programs.control import SHOWN
     from scara.widgets import control_panel
     from scara.widgets.control import make_controller
 
@@ -379,7 +380,8 @@ def test_live_panel_offers_the_independent_joint_controller(traj):
     panel.controls["controller"].value = "independent joint PID"
     assert panel.last_error is None
     assert not panel.controls["omega"].disabled and panel.controls["K_pi"].disabled
-    assert panel.state["result"].controller == "independent"
+    assert panel.state["independent_shown"] == 1.0 and sum(panel.state[f] for f in SHOWN) == 1.0  # its run, alone
+    assert panel.figures[0].layout.title.text.startswith("independent joint PID: ")
     panel.controls["omega"].value = 1.0   # too slow for the quill's weight: the sag passes max_error
     assert "max_error" in panel.last_error
     panel.controls["omega"].value = 30.0

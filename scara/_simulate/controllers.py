@@ -2,16 +2,19 @@
 worked example of the interface) and a constant torque (open loop)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .._compile import ArrayLayout
-from ..dynamics import gravity_kernel
+from .._compile import ArrayLayout, kernel
+from ..dynamics import DP_G0, dynamic_array, gravity_kernel, lumped_parameters
 from ..errors import as_array, check_finite_result
 from ..gains import gain_vector
 from ..params import ScaraParams
 from .interface import OK, REF_POS, REF_VEL, WORK_WIDTH, Controller, control_law
 
-__all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "PD_GAINS", "TORQUE_GAINS"]
+__all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "pd_gravity_steady_state_kernel",
+           "PD_GAINS", "TORQUE_GAINS"]
 
 #: The arrays of the two controllers below (gains, scratch rows, signals; neither keeps a state).
 PD_GAINS = ArrayLayout(("K_P", 4), ("K_D", 4))
@@ -36,6 +39,18 @@ def pd_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
         tau[i] = gains[_PD_KP + i] * (ref[REF_POS + i] - q[i]) + gains[_PD_KD + i] * (ref[REF_VEL + i] - qd[i]) + g[i]
     signals[_PD_S_G] = g[2]
     return OK
+
+
+@kernel
+def pd_gravity_steady_state_kernel(model, plant, K_P3):
+    """The quill's joint error ``q_d3 - q_3`` at rest under PD plus gravity compensation, where ``K_P e = g(q) -
+    g_hat(q)`` (Siciliano et al. eq. 8.53 at rest): ``e_3 = (m3_hat g0_hat - m3 g0) / K_P3`` (m) with ``m3 = m_l3 +
+    m_L`` and ``g0`` of the flat parameter arrays ``model`` (the controller's belief) and ``plant`` (the true
+    robot, :func:`~scara.dynamics.dynamic_array`); ``inf`` for ``K_P3 <= 0`` (the quill uncorrected). The other
+    joints carry no gravity, so they have no error."""
+    if K_P3 > 0.0:
+        return (lumped_parameters(model).m3 * model[DP_G0] - lumped_parameters(plant).m3 * plant[DP_G0]) / K_P3
+    return math.inf
 
 
 @control_law
@@ -85,11 +100,10 @@ class PDGravityController(Controller):
 
     def steady_state_error(self, plant: ScaraParams) -> np.ndarray:
         """Theoretical joint error ``q_d - q`` at rest: ``K_P^-1 (g_hat - g)``, i.e. only joint 3 errs by
-        ``(m3_hat - m3) g0 / K_P3`` (m), shape (4,)."""
+        ``(m3_hat - m3) g0 / K_P3`` (m; :func:`pd_gravity_steady_state_kernel`), shape (4,)."""
         plant = ScaraParams.resolve(plant)
         e = np.zeros(4)
-        with np.errstate(over="ignore", invalid="ignore"):
-            e[2] = (self.model.m3 * self.model.g0 - plant.m3 * plant.g0) / self.K_P[2] if self.K_P[2] > 0 else np.inf
+        e[2] = pd_gravity_steady_state_kernel(dynamic_array(self.model), dynamic_array(plant), float(self.K_P[2]))
         if self.K_P[2] > 0:  # K_P3 = 0 leaves the quill uncorrected: an infinite error, on purpose
             check_finite_result(e, "steady-state error", K_P3=self.K_P[2], m_L=plant.m_L)
         return e

@@ -14,7 +14,8 @@ from ..dynamics import dynamic_array
 from ..errors import ScaraError, ShapeError, UnstableError, check_count, check_positive
 from ..params import ScaraParams
 from .interface import (
-    DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
+    DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, fill_text,
+    law_arrays,
 )
 from .plant import _plant_acceleration, _plant_constants, _rk4_step
 from .setpoints import _references, _start_state
@@ -57,17 +58,57 @@ def _torque_failure(tau, k, info):
             return
 
 
+@_compile.kernel
+def first_bad_signal(sig, end):
+    """``(k, i)`` of the first NaN or infinite entry of the signals ``sig`` (N, n_sig) among its first ``end`` rows
+    (row by row), or ``(-1, -1)``: the check of a run's signals, once after the loop (a check per sample inside the
+    loop would cost it about 5 %)."""
+    for k in range(end):
+        for i in range(sig.shape[1]):
+            if not math.isfinite(sig[k, i]):
+                return k, i
+    return -1, -1
+
+
 def _first_bad_signal(sig_out, end):
-    """``(k, i)`` of the first NaN or infinite signal among the first ``end`` samples, or None. Checked once
-    after the loop, over the whole block (a check per sample inside the loop would cost it about 5 %)."""
-    block = sig_out[:end]
-    if np.isfinite(np.sum(block)):  # the usual case, without a temporary: NaN and inf propagate into the sum
-        return None
-    bad = ~np.isfinite(block)
-    if not bad.any():  # finite signals whose sum overflowed
-        return None
-    k, i = np.argwhere(bad)[0]
-    return int(k), int(i)
+    """``(k, i)`` of the first NaN or infinite signal among the first ``end`` samples, or None
+    (:func:`first_bad_signal`)."""
+    k, i = first_bad_signal(np.ascontiguousarray(sig_out), int(end))
+    return None if k < 0 else (int(k), int(i))
+
+
+#: The messages of a run the loop stopped, as templates: the text fields (``{controller}``, ``{what}``, ``{end}``,
+#: ``{cause}``, filled in by :func:`~.interface.fill_text`) and the numbers (the time ``t``, the sample ``k``...).
+#: The one wording of :func:`_raise_failure` and of the page programs that run the loop.
+FAILURE_MESSAGES = {
+    NOT_FINITE: ("the closed loop of {controller} diverged at t = {t:.4f} s (sample {k:.0f}): the controller's law "
+                 "returned {what} = {value:g}, which is not finite"),
+    JOINT_LIMIT: ("the run of {controller} left the joint range at t = {t:.4f} s (sample {k:.0f}): joint 3 (d3) = "
+                  "{d3:.6g} m (at {v3:.3g} m/s) is past {end} of the quill's stroke [{d3_min:g}, {d3_max:g}] m; the "
+                  "engine models no end stop"),
+    LAW_FAILED: "the closed loop of {controller} diverged at t = {t:.4f} s (sample {k:.0f}): {cause}",
+}
+#: The causes of the other stops (``{limit:g}`` and the law's ``{code}`` are filled in as text).
+FAILURE_CAUSES = {
+    DIVERGED: "a joint state or torque exceeded {limit:g} or is not finite",
+    SINGULAR_INERTIA: "the plant's inertia matrix lost positive definiteness",
+    LAW_FAILED: "the controller's law returned code {code}",
+}
+
+
+def failure_cause(status: int, code: int = 0, explain=None, limit: float = 0.0) -> str:
+    """The cause of a stop of status ``status`` (:data:`LAW_FAILED`, :data:`DIVERGED`, :data:`SINGULAR_INERTIA`):
+    for a law's failure its ``code`` and what the controller's ``explain(code)`` says of it."""
+    if status == LAW_FAILED:
+        return FAILURE_CAUSES[LAW_FAILED].format(code=code) + (f": {explain(code)}" if explain else "")
+    return FAILURE_CAUSES[status].format(limit=limit)
+
+
+def failure_message(status: int, controller: str, **text) -> str:
+    """The template (numbers only) of the message of a stop of status ``status`` of ``controller``'s run, the
+    text fields ``text`` (``what``, ``end``, ``cause``) written in; a status other than :data:`NOT_FINITE` and
+    :data:`JOINT_LIMIT` takes its :func:`failure_cause` as ``cause``."""
+    return fill_text(FAILURE_MESSAGES.get(status, FAILURE_MESSAGES[LAW_FAILED]), controller=controller, **text)
 
 
 @_compile.signature_kernel(_LOOP_SIGNATURE)
@@ -299,27 +340,20 @@ def _run_loop(controller, start, ref, stepping, plant):
 
 
 def _raise_failure(controller, info, dt, limit, out, plant, names):
-    """The :class:`~scara.UnstableError` of a run the loop stopped (``info = [code, k, law_code]``)."""
+    """The :class:`~scara.UnstableError` of a run the loop stopped (``info = [code, k, law_code]``), worded by
+    :data:`FAILURE_MESSAGES`."""
     k = int(info[1])
-    label = getattr(controller, "name", controller)
-    if int(info[0]) == NOT_FINITE:
+    status = int(info[0])
+    label = str(getattr(controller, "name", controller))
+    if status == NOT_FINITE:
         i = int(info[2])
-        what = (f"the torque tau_{i + 1} = {out[3][k, i]}" if i < 4 else
-                f"the signal {names[i - 4]!r} = {out[6][k, i - 4]}")
-        raise UnstableError(f"the closed loop of {label} diverged at t = {k * dt:.4f} s (sample {k}): the "
-                            f"controller's law returned {what}, which is not finite")
-    if int(info[0]) == JOINT_LIMIT:
+        what, value = ((f"the torque tau_{i + 1}", out[3][k, i]) if i < 4 else
+                       (f"the signal {names[i - 4]!r}", out[6][k, i - 4]))
+        raise UnstableError(failure_message(status, label, what=what).format(t=k * dt, k=k, value=value))
+    if status == JOINT_LIMIT:
         d3, v3 = float(out[0][k, 2]), float(out[1][k, 2])
         end = "d3_max" if d3 > plant.d3_max else "d3_min"
-        raise UnstableError(f"the run of {getattr(controller, 'name', controller)} left the joint range at "
-                            f"t = {k * dt:.4f} s (sample {k}): joint 3 (d3) = {d3:.6g} m (at {v3:.3g} m/s) is past "
-                            f"{end} of the quill's stroke [{plant.d3_min:g}, {plant.d3_max:g}] m; the engine models "
-                            f"no end stop")
-    code = int(info[2])
-    explain = getattr(controller, "explain", None)  # a controller may name the cause behind its codes
-    law_cause = f"the controller's law returned code {code}" + (f": {explain(code)}" if explain else "")
-    cause = {LAW_FAILED: law_cause,
-             DIVERGED: f"a joint state or torque exceeded {limit:g} or is not finite",
-             SINGULAR_INERTIA: "the plant's inertia matrix lost positive definiteness"}[int(info[0])]
-    raise UnstableError(f"the closed loop of {getattr(controller, 'name', controller)} diverged at "
-                        f"t = {k * dt:.4f} s (sample {k}): {cause}")
+        raise UnstableError(failure_message(status, label, end=end).format(
+            t=k * dt, k=k, d3=d3, v3=v3, d3_min=plant.d3_min, d3_max=plant.d3_max))
+    cause = failure_cause(status, int(info[2]), getattr(controller, "explain", None), limit)
+    raise UnstableError(failure_message(status, label, cause=cause).format(t=k * dt, k=k))

@@ -272,9 +272,54 @@ def _trial(law, arrays, start, dt, fills):
     return code, bufs
 
 
-def _described(name, size, controller) -> str:
+@_compile.kernel
+def guard_change(buf, start, fill):
+    """The index of the first entry of ``buf`` (1-D: a trial array followed by its guard entries) at or after
+    ``start`` that is not ``fill``, or -1: where a law wrote past its declared size (:func:`check_law_bounds`; a NaN
+    written there differs from every fill)."""
+    for i in range(start, buf.shape[0]):
+        if buf[i] != fill:
+            return i
+    return -1
+
+
+@_compile.kernel
+def same_entries(a, b, n):
+    """Whether the first ``n`` entries of ``a`` and ``b`` (1-D) are equal, a NaN equal to a NaN: two trial calls
+    gave the same outputs (:func:`check_law_bounds`)."""
+    for i in range(n):
+        x = a[i]
+        y = b[i]
+        if not (x == y or (x != x and y != y)):
+            return False
+    return True
+
+
+#: The refusals of :func:`check_law_bounds` (templates: ``{controller}``, ``{array}`` and the sizes are filled in
+#: as text, ``{index}`` is a number): the one wording, in the engine and in the page programs.
+WRITES_PAST = ("the law of controller {controller} writes {array}[{index:.0f}], past its declared size: "
+               "{described}")
+READS_PAST = "the law of controller {controller} reads past {array}: {described}"
+READS_PAST_ANY = ("the law of controller {controller} reads past its arrays (its outputs depend on the entries after "
+                  "them)")
+
+
+def described(name: str, size: int, label: str) -> str:
+    """The declared size of the trial array ``name`` in a refusal of :func:`check_law_bounds`."""
     unit = "rows of 4" if name == "work" else "entries"
-    return f"{name} holds {size} {unit} (declared by {_label(controller)}'s {name}_layout)"
+    return f"{name} holds {size} {unit} (declared by {label}'s {name}_layout)"
+
+
+def _described(name, size, controller) -> str:
+    return described(name, size, _label(controller))
+
+
+def fill_text(template: str, **text) -> str:
+    """``template`` with its text fields ``{name}`` (``text``: name -> str) written in, each with its braces
+    doubled: what is left is a template of numbers only (the form of :class:`scara.plots.panels.Text`)."""
+    for name, value in text.items():
+        template = template.replace("{" + name + "}", str(value).replace("{", "{{").replace("}", "}}"))
+    return template
 
 
 def check_law_bounds(controller, data: LawData, n_signals: int, start, dt: float) -> None:
@@ -305,10 +350,11 @@ def check_law_bounds(controller, data: LawData, n_signals: int, start, dt: float
             raise ScaraError(f"the law of controller {_label(controller)} failed on its trial call at t = 0 "
                              f"(plain Python, bounds-checked): {type(exc).__name__}: {exc}") from exc
         for name, (buf, size) in bufs.items():
-            past = np.flatnonzero(np.any((buf[size:] != fill).reshape(GUARD, -1), axis=1))
-            if past.size:
-                raise ScaraError(f"the law of controller {_label(controller)} writes {name}[{size + past[0]}], "
-                                 f"past its declared size: {_described(name, size, controller)}")
+            width = buf.size // buf.shape[0]
+            past = guard_change(buf.reshape(-1), size * width, fill)
+            if past >= 0:
+                raise ScaraError(fill_text(WRITES_PAST, controller=_label(controller), array=name,
+                                           described=_described(name, size, controller)).format(index=past // width))
         results.append((int(code), bufs))
     _check_reads(controller, law, arrays, start, dt, results)
     _CHECKED[key] = True
@@ -317,7 +363,11 @@ def check_law_bounds(controller, data: LawData, n_signals: int, start, dt: float
 def _same_outputs(a, b) -> bool:
     if a[0] != b[0]:
         return False
-    return all(np.array_equal(a[1][n][0][:a[1][n][1]], b[1][n][0][:b[1][n][1]], equal_nan=True) for n in a[1])
+    for name, (buf, size) in a[1].items():
+        width = buf.size // buf.shape[0]
+        if not same_entries(buf.reshape(-1), b[1][name][0].reshape(-1), size * width):
+            return False
+    return True
 
 
 def _check_reads(controller, law, arrays, start, dt, results):
@@ -328,7 +378,6 @@ def _check_reads(controller, law, arrays, start, dt, results):
     for name in _TRIAL_ARRAYS:
         code, bufs = _trial(law, arrays, start, dt, dict(base, **{name: _FILLS[1]}))
         if not _same_outputs(results[0], (int(code), bufs)):
-            raise ScaraError(f"the law of controller {_label(controller)} reads past {name}: "
-                             f"{_described(name, arrays[name].shape[0], controller)}")
-    raise ScaraError(f"the law of controller {_label(controller)} reads past its arrays (its outputs depend on "
-                     f"the entries after them)")
+            raise ScaraError(READS_PAST.format(controller=_label(controller), array=name,
+                                               described=_described(name, arrays[name].shape[0], controller)))
+    raise ScaraError(READS_PAST_ANY.format(controller=_label(controller)))

@@ -242,6 +242,18 @@ def _references(kind, traj, joint_reference, duration, dt, p):
     return ref, jref, x_d, xop, n
 
 
+#: The refusal of a start outside the quill's stroke (a template of numbers): the one wording, in
+#: :func:`scara.simulate` and in the page programs that start a run.
+START_STROKE_MESSAGE = "q0: joint 3 (d3) = {d3:g} m is outside the quill's stroke [{d3_min:g}, {d3_max:g}] m"
+
+
+@kernel
+def in_stroke(d3, d3_min, d3_max):
+    """Whether the quill's ``d3`` (m) lies in its stroke ``[d3_min, d3_max]`` (a NaN does not): the check of a run's
+    start (:func:`_start_state`)."""
+    return d3_min <= d3 <= d3_max
+
+
 def _start_state(q0, qd0, jref, xop, traj, p, elbow=None):
     """The initial ``(q0, qd0)`` of a run: the given ones, or the reference's first sample (joint reference),
     ``traj.q0``, or the inverse kinematics of the operational reference's first sample with ``elbow`` (default the
@@ -257,9 +269,8 @@ def _start_state(q0, qd0, jref, xop, traj, p, elbow=None):
         else:
             raise ScaraError("an open-loop run without reference needs q0")
     q0 = np.ascontiguousarray(as_array(q0, "q0", (4,)), dtype=float).copy()
-    if not p.d3_min <= q0[2] <= p.d3_max:
-        raise UnreachableError(f"q0: joint 3 (d3) = {q0[2]:g} m is outside the quill's stroke [{p.d3_min:g}, "
-                               f"{p.d3_max:g}] m")
+    if not in_stroke(q0[2], p.d3_min, p.d3_max):
+        raise UnreachableError(START_STROKE_MESSAGE.format(d3=q0[2], d3_min=p.d3_min, d3_max=p.d3_max))
     if qd0 is None:
         if jref is not None:
             qd0 = jref[0, 4:8]

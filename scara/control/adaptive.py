@@ -11,10 +11,11 @@ model (no payload), and the payload estimate ``pi_hat[0] - m_l3`` is recorded at
 """
 from __future__ import annotations
 
+import math
 
 import numpy as np
 
-from .._compile import ArrayLayout
+from .._compile import ArrayLayout, kernel
 from ..dynamics import DP_ML3, N_PI, PI_NAMES, dynamic_parameters, regressor_kernel
 from ..errors import ScaraError, ShapeError, is_bool
 from ..params import ScaraParams
@@ -51,15 +52,40 @@ def adaptation_gains(K_pi) -> np.ndarray:
     elif shape != (N_PI,):
         raise ShapeError(f"K_pi must be a number, a dict over {PI_NAMES} or {N_PI} entries, got shape {shape}")
     arr = positive_gains(K_pi, "K_pi", N_PI, allow_inf=True)
-    if np.all(np.isinf(arr)):
-        raise ScaraError("K_pi freezes every parameter (all entries infinite): nothing would adapt")
+    inv = np.empty(N_PI)
     with np.errstate(over="ignore"):
-        inv = 1.0 / arr
-    if not np.all(np.isfinite(inv)):
-        i = int(np.argmax(~np.isfinite(inv)))
-        raise ScaraError(f"K_pi[{i}] = {arr[i]:g} ({PI_NAMES[i]}) is too small: its inverse, the adaptation rate, "
-                         f"is not finite")
+        i = adaptation_rates(arr, inv)
+    if i == FROZEN:
+        raise ScaraError(FROZEN_MESSAGE)
+    if i >= 0:
+        raise ScaraError(SMALL_WEIGHT_MESSAGE.format(i=i, K_pi=arr[i], name=PI_NAMES[i]))
     return inv
+
+
+#: What :func:`adaptation_rates` returns when every parameter is frozen, and the refusals of
+#: :func:`adaptation_gains` (templates: the one wording, in the controller and in the controllers panel).
+FROZEN = -2
+FROZEN_MESSAGE = "K_pi freezes every parameter (all entries infinite): nothing would adapt"
+SMALL_WEIGHT_MESSAGE = "K_pi[{i}] = {K_pi:g} ({name}) is too small: its inverse, the adaptation rate, is not finite"
+
+
+@kernel
+def adaptation_rates(K_pi, out):
+    """``out = K_pi^-1`` (13,) for positive weights ``K_pi`` (13,; ``inf`` freezes a parameter, rate 0). Returns
+    -1, :data:`FROZEN` when every entry is infinite (nothing adapts), or the first ``i`` whose rate ``1 / K_pi_i``
+    is not finite (a weight so small that its inverse overflows): the checks of :func:`adaptation_gains`."""
+    frozen = True
+    for i in range(N_PI):
+        if K_pi[i] != math.inf:
+            frozen = False
+    if frozen:
+        return FROZEN
+    for i in range(N_PI):
+        out[i] = 1.0 / K_pi[i]
+    for i in range(N_PI):
+        if not math.isfinite(out[i]):
+            return i
+    return -1
 
 
 #: The law's arrays: gains (``K_pi_inv = K_pi^-1``), state (the estimate ``pi_hat``), scratch rows (``Y`` is
@@ -72,6 +98,20 @@ WORK = ArrayLayout(("Y", N_PI), ("qd_r", 1), ("qdd_r", 1), ("sigma", 1), width=W
 _W_Y, _W_QDR, _W_QDDR, _W_SIGMA = WORK.offsets
 SIGNALS = ArrayLayout(("payload_estimate", 1), ("sigma_norm", 1))
 _S_PAYLOAD, _S_SIGMA = SIGNALS.offsets
+
+
+@kernel
+def pack_gains(Lambda, K_D, K_pi_inv, tau_max, max_error, out):
+    """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``Lambda``, ``K_D``, ``tau_max`` (4,),
+    the rates ``K_pi_inv`` (13,) and ``max_error``: the one packer of :meth:`AdaptiveController.gains_array` and of
+    the controllers panel's program."""
+    for i in range(4):
+        out[_G_LAMBDA + i] = Lambda[i]
+        out[_G_KD + i] = K_D[i]
+        out[_G_TMAX + i] = tau_max[i]
+    for j in range(N_PI):
+        out[_G_KPI + j] = K_pi_inv[j]
+    out[_G_EMAX] = max_error
 
 
 @control_law
@@ -161,7 +201,10 @@ class AdaptiveController(BoundedController):
         return tuple(n for n, g in zip(PI_NAMES, self.K_pi_inv) if g > 0)
 
     def gains_array(self) -> np.ndarray:
-        return GAINS.pack(Lambda=self.Lambda, K_D=self.K_D, K_pi_inv=self.K_pi_inv, **self._bounds())
+        out = np.empty(GAINS.size)
+        pack_gains(self.Lambda, self.K_D, self.K_pi_inv, np.ascontiguousarray(self.tau_max, dtype=float),
+                   self.max_error, out)
+        return out
 
     def initial_state(self) -> np.ndarray:
         return dynamic_parameters(self.model)

@@ -34,9 +34,11 @@ command further into the limit); otherwise ``chi_{k+1} = chi_k + T qt_k``.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .._compile import ArrayLayout
+from .._compile import ArrayLayout, kernel
 from ..errors import ScaraError, UnstableError, check_finite_result, check_flag
 from ..params import ScaraParams
 from .._simulate import control_law
@@ -113,18 +115,63 @@ def independent_gains(B_bar=B_BAR, omega=OMEGA, F=None, integral: bool = True) -
     F = positive_gains(ScaraParams().F if F is None else F, "F", rule="nonnegative")
     integral = check_flag(integral, "integral")
     n = 3.0 if integral else 2.0
+    K_P, K_D, K_I = np.empty(4), np.empty(4), np.empty(4)
     with np.errstate(over="ignore", invalid="ignore"):
-        K_P = (3.0 if integral else 1.0) * omega ** 2 * B_bar
-        K_D = n * omega * B_bar - F
-        K_I = omega ** 3 * B_bar if integral else np.zeros(4)
+        i = placed_gains(B_bar, omega, F, integral, K_P, K_D, K_I)
     for name, g in (("K_P", K_P), ("K_D", K_D), ("K_I", K_I)):
         check_finite_result(g, name, B_bar=B_bar, omega=omega)
-    if np.any(K_D <= 0):
-        i = int(np.argmax(K_D <= 0))
-        raise ScaraError(f"omega[{i}] = {omega[i]:g} rad/s is too slow for joint {i + 1}: its friction F[{i}] = "
-                         f"{F[i]:g} alone reaches {n:g} omega B_bar = {n * omega[i] * B_bar[i]:g}, so K_D[{i}] "
-                         f"would be {K_D[i]:g} (it must be > 0); choose omega[{i}] > {F[i] / (n * B_bar[i]):g} rad/s")
+    if i >= 0:
+        raise ScaraError(SLOW_POLE_MESSAGE.format(i=i, joint=i + 1, omega=omega[i], F=F[i], n=n,
+                                                  reach=n * omega[i] * B_bar[i], K_D=K_D[i],
+                                                  omega_min=F[i] / (n * B_bar[i])))
     return K_P, K_D, K_I
+
+
+#: The refusals of the pole placement and of explicit gains (templates of the joint ``i`` and the numbers): the one
+#: wording, in :func:`independent_gains`, :class:`IndependentJointController` and the controllers panel of chapter 6.
+SLOW_POLE_MESSAGE = ("omega[{i}] = {omega:g} rad/s is too slow for joint {joint}: its friction F[{i}] = {F:g} alone "
+                     "reaches {n:g} omega B_bar = {reach:g}, so K_D[{i}] would be {K_D:g} (it must be > 0); choose "
+                     "omega[{i}] > {omega_min:g} rad/s")
+ROUTH_MESSAGE = ("K_I[{i}] = {K_I:g} must be < (F + K_D) K_P / B_bar = {limit:g} for joint {joint}: the nominal error "
+                 "polynomial B_bar s^3 + (F + K_D) s^2 + K_P s + K_I has roots in the right half-plane (Routh)")
+
+
+@kernel
+def placed_gains(B_bar, omega, F, integral, K_P, K_D, K_I):
+    """The pole placement (eq-ctl-ij-gains) into ``K_P``, ``K_D``, ``K_I`` (4,) from ``B_bar``, ``omega``, ``F``
+    (4,): ``K_P = 3 omega^2 B_bar``, ``K_D = 3 omega B_bar - F``, ``K_I = omega^3 B_bar`` with ``integral`` (PID),
+    else ``K_P = omega^2 B_bar``, ``K_D = 2 omega B_bar - F``, ``K_I = 0`` (PD). Returns the first joint whose
+    ``K_D <= 0`` (the friction alone damps more than the pole asks), or -1: the one computation of
+    :func:`independent_gains` and of the controllers panel's program."""
+    c = 3.0 if integral else 1.0
+    n = 3.0 if integral else 2.0
+    for i in range(4):
+        w = omega[i]
+        K_P[i] = c * (w * w) * B_bar[i]
+        K_D[i] = n * w * B_bar[i] - F[i]
+        K_I[i] = w ** 3.0 * B_bar[i] if integral else 0.0
+    for i in range(4):
+        if K_D[i] <= 0.0:
+            return i
+    return -1
+
+
+@kernel
+def joint_margin(F, K_P, K_D, K_I, B_bar, i):
+    """The book's (eq-ctl-ij-margin) for joint ``i``: ``(F + K_D) K_P / K_I / B_bar`` with the integral (``K_I > 0``),
+    ``inf`` without (see :meth:`IndependentJointController.inertia_margin`)."""
+    if K_I[i] > 0.0:
+        return (F[i] + K_D[i]) * K_P[i] / K_I[i] / B_bar[i]
+    return math.inf
+
+
+@kernel
+def margin_status(F, K_P, K_D, K_I, B_bar):
+    """The first joint whose margin :func:`joint_margin` is not above 1 (its nominal loop is unstable: Routh), or -1."""
+    for i in range(4):
+        if not joint_margin(F, K_P, K_D, K_I, B_bar, i) > 1.0:
+            return i
+    return -1
 
 
 # --------------------------------------------------------------------------------------------------
@@ -138,6 +185,24 @@ STATE = ArrayLayout(("chi", 4))
 (_X_CHI,) = STATE.offsets
 SIGNALS = ArrayLayout(("integral_action", 4), ("saturated", 1))
 _S_IA, _S_SAT = SIGNALS.offsets
+
+
+@kernel
+def pack_gains(B_bar, F, K_P, K_D, K_I, feedforward, saturation, anti_windup, tau_max, max_error, out):
+    """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``B_bar``, ``F``, ``K_P``, ``K_D``,
+    ``K_I``, ``tau_max`` (4,), the three flags (0.0 or 1.0) and ``max_error``: the one packer of
+    :meth:`IndependentJointController.gains_array` and of the controllers panel's program."""
+    for i in range(4):
+        out[_G_BB + i] = B_bar[i]
+        out[_G_F + i] = F[i]
+        out[_G_KP + i] = K_P[i]
+        out[_G_KD + i] = K_D[i]
+        out[_G_KI + i] = K_I[i]
+        out[_G_TMAX + i] = tau_max[i]
+    out[_G_FF] = feedforward
+    out[_G_SAT] = saturation
+    out[_G_AW] = anti_windup
+    out[_G_EMAX] = max_error
 
 
 @control_law
@@ -237,23 +302,22 @@ class IndependentJointController(BoundedController):
         self.K_D = K_D0 if K_D is None else positive_gains(K_D, "K_D")
         if self.integral:
             self.K_I = K_I0 if K_I is None else positive_gains(K_I, "K_I")
-            with np.errstate(over="ignore", invalid="ignore"):
-                bad = ~(self.inertia_margin() > 1.0)  # B_bar itself beyond the inertia the loop tolerates
-            if bad.any():
-                i = int(np.argmax(bad))
-                raise UnstableError(
-                    f"K_I[{i}] = {self.K_I[i]:g} must be < (F + K_D) K_P / B_bar = "
-                    f"{(self.F[i] + self.K_D[i]) * self.K_P[i] / self.B_bar[i]:g} for joint {i + 1}: the nominal error "
-                    f"polynomial B_bar s^3 + (F + K_D) s^2 + K_P s + K_I has roots in the right half-plane (Routh)")
+            with np.errstate(over="ignore", invalid="ignore"):  # B_bar itself beyond the inertia the loop tolerates
+                i = margin_status(self.F, self.K_P, self.K_D, self.K_I, self.B_bar)
+                if i >= 0:
+                    raise UnstableError(ROUTH_MESSAGE.format(
+                        i=i, joint=i + 1, K_I=self.K_I[i], limit=(self.F[i] + self.K_D[i]) * self.K_P[i] / self.B_bar[i]))
         else:
             self.K_I = np.zeros(4)
         self.name = "independent" if self.integral else "independent_pd"
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
-        return GAINS.pack(B_bar=self.B_bar, F=self.F, K_P=self.K_P, K_D=self.K_D, K_I=self.K_I,
-                          feedforward=float(self.feedforward), saturation=float(self.saturation),
-                          anti_windup=float(self.anti_windup), **self._bounds())
+        out = np.empty(GAINS.size)
+        pack_gains(self.B_bar, np.ascontiguousarray(self.F, dtype=float), self.K_P, self.K_D, self.K_I,
+                   float(self.feedforward), float(self.saturation), float(self.anti_windup),
+                   np.ascontiguousarray(self.tau_max, dtype=float), self.max_error, out)
+        return out
 
     def initial_state(self) -> np.ndarray:
         return np.zeros(STATE.size)
@@ -272,9 +336,8 @@ class IndependentJointController(BoundedController):
         the placed gains (eq-ctl-ij-gains) ``F + K_D = 3 omega B_bar``,
         so the ratio is ``3 omega 3 omega^2 / omega^3 = 9`` whatever the friction; PD (a second-order loop)
         tolerates any inertia (``inf``)."""
-        with np.errstate(divide="ignore"):
-            return np.where(self.K_I > 0, (self.F + self.K_D) * self.K_P / np.where(self.K_I > 0, self.K_I, 1.0)
-                            / self.B_bar, np.inf)
+        with np.errstate(over="ignore", invalid="ignore"):
+            return np.array([joint_margin(self.F, self.K_P, self.K_D, self.K_I, self.B_bar, i) for i in range(4)])
 
     def steady_state_error(self, plant: ScaraParams) -> np.ndarray:
         """Joint error ``q_d - q`` (4,) at rest with ``plant``'s weight uncompensated (eq-ctl-ij-sag): the

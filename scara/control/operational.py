@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compile import ArrayLayout
+from .._compile import ArrayLayout, kernel
 from ..dynamics import DP_A1, DP_A2, DP_D0, inverse_dynamics_kernel
 from ..errors import UnstableError, check_finite_result, check_flag
 from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
@@ -35,6 +35,36 @@ _W_B, _W_J, _W_JD, _W_XT, _W_A, _W_Y = WORK.offsets
 assert _W_B == 0, "inverse_dynamics_kernel writes B_hat into the first four rows of work"
 SIGNALS = ArrayLayout(("integral_action", ("x", "y", "z", "phi")))
 (_S_IA,) = SIGNALS.offsets
+
+
+#: The refusal of an integral gain that makes the nominal error polynomial unstable (a template of the component
+#: ``i``, ``K_I`` and ``K_D K_P``): the one wording, in the controller and in the controllers panel of chapter 6.
+INTEGRAL_MESSAGE = ("K_I[{i}] = {K_I:g} must be < K_D[{i}] K_P[{i}] = {K_DK_P:g}: the error polynomial s^3 + K_D s^2 + "
+                    "K_P s + K_I has roots in the right half-plane (Routh)")
+
+
+@kernel
+def integral_status(K_P, K_D, K_I):
+    """The first component ``i`` (of 4) whose ``K_D_i K_P_i <= K_I_i``, or -1: by Routh, the nominal error polynomial
+    ``s^3 + K_D s^2 + K_P s + K_I`` of the integral law has all its roots in the left half-plane iff (the gains
+    being positive) ``K_D K_P > K_I``."""
+    for i in range(4):
+        if K_D[i] * K_P[i] <= K_I[i]:
+            return i
+    return -1
+
+
+@kernel
+def pack_gains(K_P, K_D, K_I, tau_max, max_error, out):
+    """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``K_P``, ``K_D``, ``K_I``, ``tau_max``
+    (4,) and ``max_error``: the one packer of :meth:`OperationalSpaceController.gains_array` and of the
+    controllers panel's program."""
+    for i in range(4):
+        out[_G_KP + i] = K_P[i]
+        out[_G_KD + i] = K_D[i]
+        out[_G_KI + i] = K_I[i]
+        out[_G_TMAX + i] = tau_max[i]
+    out[_G_EMAX] = max_error
 
 
 @control_law
@@ -129,12 +159,9 @@ class OperationalSpaceController(BoundedController):
         self.K_D = positive_gains(K_D, "K_D")
         if self.integral:
             self.K_I = positive_gains(K_I, "K_I")
-            bad = self.K_D * self.K_P <= self.K_I
-            if bad.any():
-                i = int(np.argmax(bad))
-                raise UnstableError(
-                    f"K_I[{i}] = {self.K_I[i]:g} must be < K_D[{i}] K_P[{i}] = {self.K_D[i] * self.K_P[i]:g}: the error "
-                    f"polynomial s^3 + K_D s^2 + K_P s + K_I has roots in the right half-plane (Routh)")
+            i = integral_status(self.K_P, self.K_D, self.K_I)
+            if i >= 0:
+                raise UnstableError(INTEGRAL_MESSAGE.format(i=i, K_I=self.K_I[i], K_DK_P=self.K_D[i] * self.K_P[i]))
         else:
             self.K_I = np.zeros(4)
         self.name = "operational" if self.integral else "operational_noint"
@@ -142,7 +169,9 @@ class OperationalSpaceController(BoundedController):
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
-        return GAINS.pack(K_P=self.K_P, K_D=self.K_D, K_I=self.K_I, **self._bounds())
+        out = np.empty(GAINS.size)
+        pack_gains(self.K_P, self.K_D, self.K_I, np.ascontiguousarray(self.tau_max, dtype=float), self.max_error, out)
+        return out
 
     def initial_state(self) -> np.ndarray:
         return np.zeros(STATE.size)

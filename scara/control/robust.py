@@ -61,13 +61,46 @@ def sliding_weight(K_P, K_D, Lambda) -> np.ndarray:
     K_P = positive_gains(K_P, "K_P")
     K_D = positive_gains(K_D, "K_D")
     lam = positive_gains(Lambda, "Lambda")
-    if np.any(lam >= K_D):
-        i = int(np.argmax(lam >= K_D))
-        raise UnstableError(f"Lambda[{i}] = {lam[i]:g} must be < K_D[{i}] = {K_D[i]:g}: the weight P of the Lyapunov "
-                            f"equation (its velocity block 2 (K_D - Lambda)) would not be positive definite")
+    i = lambda_status(lam, K_D)
+    if i >= 0:
+        raise UnstableError(LAMBDA_MESSAGE.format(i=i, Lambda=lam[i], K_D=K_D[i]))
     with np.errstate(over="ignore", invalid="ignore"):
         P = np.diag(np.concatenate([2.0 * K_P * lam, 2.0 * (K_D - lam)]))
     return check_finite_result(P, "P = diag(2 K_P Lambda, 2 (K_D - Lambda))", K_P=K_P, K_D=K_D, Lambda=lam)
+
+
+#: The refusal of a ``Lambda`` not below ``K_D`` (:func:`sliding_weight`), a template of the joint ``i`` and the two
+#: gains: the one wording of the check, in :class:`RobustController` and in the controllers panel of chapter 6.
+LAMBDA_MESSAGE = ("Lambda[{i}] = {Lambda:g} must be < K_D[{i}] = {K_D:g}: the weight P of the Lyapunov equation (its "
+                  "velocity block 2 (K_D - Lambda)) would not be positive definite")
+
+
+@kernel
+def lambda_status(Lambda, K_D):
+    """The first joint ``i`` whose ``Lambda_i >= K_D_i`` (4,) each, or -1: the check of :func:`sliding_weight`, whose
+    weight ``P`` has the velocity block ``2 (K_D - Lambda)``, positive definite only when every ``Lambda_i < K_D_i``."""
+    for i in range(4):
+        if Lambda[i] >= K_D[i]:
+            return i
+    return -1
+
+
+@kernel
+def sliding_rows(K_P, K_D, Lambda, out):
+    """``Z = D^T Q`` (4, 8), row-major into ``out`` (32,), for the weight ``P = sliding_weight(K_P, K_D, Lambda)``
+    (diagonal), in closed form: each joint's block of ``H^T Q + Q H = -P`` with ``H = [[0, 1], [-k_p, -k_d]]`` and
+    ``P = diag(p1, p2)`` gives ``Q12 = p1 / (2 k_p)`` and ``Q22 = (Q12 + p2 / 2) / k_d`` (the equations of
+    :func:`sliding_weight`; ``Q12 = lambda``, ``Q22 = 1`` up to round-off), so ``z_i = Q12 qt_i + Q22 qt_dot_i``.
+    Equal to :func:`sliding_matrix` (scipy's Bartels-Stewart solve) to about 1e-12 relative; the entries off the two
+    diagonals are exact zeros."""
+    for j in range(32):
+        out[j] = 0.0
+    for i in range(4):
+        p1 = 2.0 * K_P[i] * Lambda[i]
+        p2 = 2.0 * (K_D[i] - Lambda[i])
+        q12 = p1 / (2.0 * K_P[i])
+        out[8 * i + i] = q12
+        out[8 * i + 4 + i] = (q12 + 0.5 * p2) / K_D[i]
 
 
 def lyapunov_matrix(K_P, K_D, P) -> np.ndarray:
@@ -221,6 +254,23 @@ SIGNALS = ArrayLayout(("z_norm", 1), ("w", 4))
 _S_ZNORM, _S_W = SIGNALS.offsets
 
 
+@kernel
+def pack_gains(K_P, K_D, Z, rho, epsilon, B_hat, tau_max, max_error, out):
+    """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``K_P``, ``K_D``, ``B_hat``,
+    ``tau_max`` (4,) each, ``Z = D^T Q`` (32,) row-major, ``rho``, ``epsilon`` and ``max_error``: the one packer of
+    :meth:`RobustController.gains_array` and of the controllers panel's program."""
+    for i in range(4):
+        out[_G_KP + i] = K_P[i]
+        out[_G_KD + i] = K_D[i]
+        out[_G_BH + i] = B_hat[i]
+        out[_G_TMAX + i] = tau_max[i]
+    for j in range(32):
+        out[_G_Z + j] = Z[j]
+    out[_G_RHO] = rho
+    out[_G_EPS] = epsilon
+    out[_G_EMAX] = max_error
+
+
 @control_law
 def robust_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Robust control step (see the module docstring). ``ref = [q_d, qd_d, qdd_d]``; the twelve arguments are
@@ -322,8 +372,10 @@ class RobustController(BoundedController):
         self._set_bounds(tau_max, max_error)
 
     def gains_array(self) -> np.ndarray:
-        return GAINS.pack(K_P=self.K_P, K_D=self.K_D, Z=self.sliding, rho=self.rho, epsilon=self.epsilon,
-                          B_hat=self.B_hat, **self._bounds())
+        out = np.empty(GAINS.size)
+        pack_gains(self.K_P, self.K_D, np.ascontiguousarray(self.sliding, dtype=float).ravel(), self.rho, self.epsilon,
+                   self.B_hat, np.ascontiguousarray(self.tau_max, dtype=float), self.max_error, out)
+        return out
 
     def epsilon_bound(self, lam_max: float, dt: float = 1e-3) -> float:
         """The thinnest boundary layer whose sampled linear loop is still stable (below it, chattering).

@@ -25,22 +25,21 @@ from ._common import (
 )
 from ._common import MAX_POINTS, MAX_SLIDER_SAMPLES, MAX_STEPS, FIGURE_BUDGET
 from .layout import finish_layout, stacked_axes
-from .panels import FigurePair
+from .panels import Flag, Text
+from ..programs.control import LAWS
 
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
     "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "saturation_figure",
-    "figure_slider", "tuning_figure", "tuning_series", "tuning_signal", "tuning_title", "TUNING_CONTROLLERS",
-    "TUNING_ROLES", "tuning_extra", "tuning_update", "tuning_pair",
+    "figure_slider", "tuning_figure", "tuning_build", "tuning_values", "tuning_title", "tuning_bindings",
+    "TUNING_CONTROLLERS", "TUNING_ROLES", "TUNING_TRACES", "TUNING_PATHS", "TUNING_TITLE",
 ]
 
-#: the live panel's controllers (keys of ``CONTROLLER_LABELS``), in the order of its dropdown
-TUNING_CONTROLLERS = ("robust", "adaptive", "operational", "operational_noint", "independent")
-#: the roles of :func:`tuning_figure`'s traces, in order
-TUNING_ROLES = ("position error", "f3", "τ1", "τ2", "τ4", "signal")
-#: the layout key of :func:`tuning_figure`'s signal axis (the third row; the second has a secondary axis)
+#: the live panel's controllers (keys of ``CONTROLLER_LABELS``), in the order of its dropdown (its program's laws)
+TUNING_CONTROLLERS = LAWS
+#: the layout key of :func:`tuning_build`'s signal axis (the third row; the second has a secondary axis)
 _SIGNAL_AXIS = "yaxis4"
 
 _COMPONENTS = ("x", "y", "z", "φ")
@@ -495,37 +494,88 @@ def payload_sweep_figure(masses, errors: dict, title: str | None = None, height:
     return fig
 
 
-def tuning_series(result, points: int = 1200) -> list:
-    """The ``(t, y)`` arrays of :func:`tuning_figure`'s six traces, in order: the position error norm (upper
-    envelope), the quill's force, the other three torques, and the run's own signal (payload estimate,
-    ``||z||`` envelope or ``e_z`` in mm), as float32 (what the figure holds). A live panel redraws a run of
-    the same controller from these alone.
+def _value(binding, values):
+    """The value of a panel's binding (:class:`~scara.plots.panels.PageProgram`) for ``values``: an output field
+    (a float array as float64), a :class:`~scara.plots.panels.Text` formatted, a :class:`~scara.plots.panels.Flag`
+    as a bool."""
+    if isinstance(binding, Text):
+        return binding.format(values)
+    if isinstance(binding, Flag):
+        return bool(values[binding.field] != 0)
+    v = values[binding]
+    return np.asarray(v, dtype=float) if np.ndim(v) else v
 
-    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
-    raises :class:`ScaraError` before any work."""
+
+def _bound_trace(values, role, name, colour, width, **kw):
+    """The trace ``role`` of :func:`tuning_build`, its bound properties (:data:`TUNING_TRACES`) from ``values``."""
+    props = {prop: _value(b, values) for prop, b in TUNING_TRACES[role].items()}
+    return go.Scatter(mode="lines", name=name, line=dict(color=colour, width=width), **props, **kw)
+
+
+def tuning_build(values, height: int = 640, title: str | None = None) -> go.Figure:
+    """The live panel's figure drawn from its program's ``values`` (the outputs of
+    :func:`scara.programs.control.control_program` by field, with the settings): the position error norm (log, upper
+    envelope; one trace per controller, in its colour, the run's shown), the quill's force and the other torques,
+    and the run's own signal: the payload estimate (adaptive), ``||z||`` (robust, log) or ``e_z`` (mm), each on its
+    own axis of the third panel (the run's shown), with the controller's own figures in a note above it. Every
+    property that changes with the settings is a binding of :data:`TUNING_TRACES`, :data:`TUNING_PATHS` and
+    :data:`TUNING_TITLE` (``title`` replaces the title's text)."""
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
+                        specs=[[{}], [{"secondary_y": True}], [{}]])
+    for name in TUNING_CONTROLLERS:
+        fig.add_trace(_bound_trace(values, f"error {name}", CONTROLLER_LABELS[name], PALETTE[name], 1.8), row=1, col=1)
+    fig.add_trace(_bound_trace(values, "f3", "f3 (N)", JOINT_COLOURS[2], 1.3), row=2, col=1)
+    for j in (0, 1, 3):
+        fig.add_trace(_bound_trace(values, f"τ{j + 1}", f"τ{j + 1} (N m)", JOINT_COLOURS[j], 1.1), row=2, col=1,
+                      secondary_y=True)
+    for role, (name, colour, axis) in _SIGNALS.items():
+        fig.add_trace(_bound_trace(values, role, name, colour, 1.5, xaxis="x3", yaxis=axis.replace("axis", "")))
+    fig.update_layout(annotations=[
+        dict(text=_value(TUNING_PATHS[f"annotations.{i}.text"], values), xref="x3 domain", yref="y4 domain", x=1.0,
+             y=1.0, xanchor="right", yanchor="bottom", showarrow=False, font=dict(size=11),
+             visible=_value(TUNING_PATHS[f"annotations.{i}.visible"], values)) for i in range(len(_NOTED))])
+    finish_layout(fig, _value(TUNING_TITLE, values) if title is None else title, height)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
+    fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)
+    fig.update_yaxes(title_text="τ (N m)", row=2, col=1, secondary_y=True)
+    fig.update_xaxes(title_text="t (s)", row=3, col=1)
+    for role, (name, colour, axis) in _SIGNALS.items():
+        extra = dict(type="log", exponentformat="power") if role == "z" else {}
+        if axis != _SIGNAL_AXIS:
+            extra.update(overlaying=_SIGNAL_AXIS.replace("axis", ""), anchor="x3")
+        fig.update_layout({axis: dict(title=dict(text=name), visible=_value(TUNING_PATHS[f"{axis}.visible"], values),
+                                      **extra)})
+    return fig
+
+
+def tuning_values(result, summary: dict, points: int = 1200) -> dict:
+    """The values :func:`tuning_build` draws, for one run (a :class:`~scara._simulate.SimulationResult` of any
+    controller) and its :func:`~scara.control.control_summary`: the same fields as the panel's program gives (its
+    thinning and envelopes, :func:`scara.programs.control.thin_index` and :func:`~scara.plots._common.envelope`), the
+    numbers the panel's notes name left at zero."""
+    from ..programs.control import SCALARS, control_outputs  # noqa: PLC0415
+
     points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
-    tt, yy = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
-    idx = thin(len(result.t), points)
-    t = result.t[idx]
-    out = [(tt, yy), (t, result.tau[idx, 2])] + [(t, result.tau[idx, j]) for j in (0, 1, 3)]
+    n = len(result.t)
+    layout = control_outputs(n, points)
+    values = {name: (0.0 if layout.sizes[name] == 1 else np.zeros(layout.sizes[name])) for name in layout.names}
+    values.update(controller=run_label(result), payload=0.0, epsilon=0.0, omega=0.0)
+    values["err_t"], values["err_y"] = envelope(result.t, np.linalg.norm(result.e[:, :3], axis=1), points)
+    idx = thin(n, points)
+    values["t"] = result.t[idx]
+    values["f3"], values["tau1"], values["tau2"], values["tau4"] = (result.tau[idx, j] for j in (2, 0, 1, 3))
     sig = result.signals
     if "payload_estimate" in sig:
-        out.append((t, sig["payload_estimate"][idx]))
+        values["estimate"], values["estimate_shown"] = sig["payload_estimate"][idx], 1.0
     elif "z_norm" in sig:
-        out.append(envelope(result.t, sig["z_norm"], points))
+        values["z_norm"], values["z_shown"] = envelope(result.t, sig["z_norm"], points)[1], 1.0
     else:
-        out.append((t, 1e3 * result.e[idx, 2]))
-    return [(f32(x), f32(y)) for x, y in out]
-
-
-def tuning_signal(result) -> tuple:
-    """The third panel of :func:`tuning_figure`: ``(name, colour, log axis)`` of the run's own signal."""
-    sig = result.signals
-    if "payload_estimate" in sig:
-        return "m̂_L (kg)", PALETTE["adaptive"], False
-    if "z_norm" in sig:
-        return "‖z‖", PALETTE["robust"], True
-    return "e_z (mm)", AXIS_COLOURS[2], False
+        values["e_z"], values["e_z_shown"] = 1e3 * result.e[idx, 2], 1.0
+    name = getattr(result, "controller", "")
+    if name in TUNING_CONTROLLERS:
+        values[f"{name}_shown"] = 1.0
+    values.update({k: float(np.atleast_1d(summary[k])[0]) for k in SCALARS.names if np.size(summary.get(k, [])) == 1})
+    return values
 
 
 def tuning_title(result, summary: dict, extra: str = "") -> str:
@@ -538,69 +588,57 @@ def tuning_title(result, summary: dict, extra: str = "") -> str:
 
 
 def tuning_figure(result, summary: dict, extra: str = "", points: int = 1200, height: int = 640) -> go.Figure:
-    """The live panel's figure for one run: the position error norm (log), the quill's force and the other
-    torques, and the run's own signal (payload estimate, ``||z||`` or the integral action); data from
-    :func:`tuning_series`, title from :func:`tuning_title`.
+    """The live panel's figure (:func:`tuning_build`) for one run and its :func:`~scara.control.control_summary`: the
+    position error norm (log), the quill's force and the other torques, and the run's own signal (payload estimate,
+    ``||z||`` or ``e_z``); data from :func:`tuning_values`, title from :func:`tuning_title` (no note). A run of a
+    controller the panel does not offer draws its error in its own colour.
 
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
     points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
-    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.07,
-                        specs=[[{}], [{"secondary_y": True}], [{}]])
-    series = tuning_series(result, points)
-    fig.add_trace(_line(*series[0], run_label(result), run_colour(result), width=1.8), row=1, col=1)
-    fig.add_trace(_line(*series[1], "f3 (N)", JOINT_COLOURS[2], width=1.3), row=2, col=1)
-    for (x, y), j in zip(series[2:5], (0, 1, 3)):
-        fig.add_trace(_line(x, y, f"τ{j + 1} (N m)", JOINT_COLOURS[j], width=1.1), row=2, col=1, secondary_y=True)
-    name, colour, log = tuning_signal(result)
-    fig.add_trace(_line(*series[5], name, colour), row=3, col=1)
-    if log:
-        fig.update_yaxes(type="log", exponentformat="power", row=3, col=1)
-    lab = name
-    finish_layout(fig, tuning_title(result, summary, extra), height)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="‖e_p‖ (m)", row=1, col=1)
-    fig.update_yaxes(title_text="f3 (N)", row=2, col=1, secondary_y=False)
-    fig.update_yaxes(title_text="τ (N m)", row=2, col=1, secondary_y=True)
-    fig.update_yaxes(title_text=lab, row=3, col=1)
-    fig.update_xaxes(title_text="t (s)", row=3, col=1)
+    fig = tuning_build(tuning_values(result, summary, points), height, tuning_title(result, summary, extra))
+    for a in fig.layout.annotations:
+        a.visible = False
+    if getattr(result, "controller", "") not in TUNING_CONTROLLERS:
+        fig.data[0].update(visible=True, name=run_label(result), line=dict(color=run_colour(result), width=1.8))
     return fig
 
 
-def tuning_extra(state) -> str:
-    """The second line of the live panel's title for ``state`` (``controller``, ``result``, ``summary``,
-    ``payload``, ``theory``): the loop's time and what the controller's own figures are."""
-    c, res, s = state["controller"], state["result"], state["summary"]
-    extra = f"70 s simulated in {1e3 * res.elapsed:.0f} ms (compiled loop)"
-    if c.name == "robust":
-        extra += f"; ε = {c.epsilon:.3g}, ρ/ε = {c.rho / c.epsilon:.3g} 1/s"
-    elif c.name == "adaptive":
-        extra += f"; final payload estimate {res.payload_estimate[-1]:.4g} kg (true {state['payload']:g})"
-    elif c.name == "independent":
-        extra += f"; ω = {c.omega[0]:.3g} rad/s, largest K_P = {c.K_P.max():.3g}"
-    elif c.name == "operational_noint":
-        extra += f"; e_z at rest {1e3 * s['steady_z_error']:.4g} mm, theory {1e3 * state['theory']:.4g} mm"
-    return extra
+#: the roles of :func:`tuning_build`'s traces, in order: the position error of each controller of the panel (one
+#: shown), the quill's force, the other torques, the run's own signal (one of three shown)
+TUNING_ROLES = tuple(f"error {name}" for name in TUNING_CONTROLLERS) + ("f3", "τ1", "τ2", "τ4", "estimate", "z", "e_z")
+#: the run's own signal: role -> (name, colour, axis of the third panel)
+_SIGNALS = {"estimate": ("m̂_L (kg)", PALETTE["adaptive"], "yaxis4"), "z": ("‖z‖", PALETTE["robust"], "yaxis5"),
+            "e_z": ("e_z (mm)", AXIS_COLOURS[2], "yaxis6")}
+#: the controllers whose own figures a note above the signal panel gives, in the order of the annotations
+_NOTED = ("robust", "adaptive", "operational_noint", "independent")
+_NOTES = {
+    "robust": Text("ε = {epsilon:.3g}, ρ/ε = {rho_over_epsilon:.3g} 1/s"),
+    "adaptive": Text("final payload estimate {payload_estimate:.4g} kg (true {payload:g})"),
+    "operational_noint": Text("e_z at rest {steady_z_error_mm:.4g} mm, theory {theory_mm:.4g} mm"),
+    "independent": Text("ω = {omega:.3g} rad/s, largest K_P = {largest_K_P:.3g}"),
+}
+#: the bindings of :func:`tuning_build`'s traces (by role), of its layout (by dotted path) and of its title, to the
+#: outputs of :func:`scara.programs.control.control_program` (the panel's :class:`~scara.plots.panels.PageProgram`)
+TUNING_TRACES = {
+    **{f"error {name}": {"x": "err_t", "y": "err_y", "visible": Flag(f"{name}_shown")} for name in TUNING_CONTROLLERS},
+    "f3": {"x": "t", "y": "f3"}, "τ1": {"x": "t", "y": "tau1"}, "τ2": {"x": "t", "y": "tau2"},
+    "τ4": {"x": "t", "y": "tau4"},
+    "estimate": {"x": "t", "y": "estimate", "visible": Flag("estimate_shown")},
+    "z": {"x": "err_t", "y": "z_norm", "visible": Flag("z_shown")},
+    "e_z": {"x": "t", "y": "e_z", "visible": Flag("e_z_shown")},
+}
+TUNING_PATHS = {
+    "yaxis4.visible": Flag("estimate_shown"), "yaxis5.visible": Flag("z_shown"), "yaxis6.visible": Flag("e_z_shown"),
+    **{f"annotations.{i}.text": _NOTES[name] for i, name in enumerate(_NOTED)},
+    **{f"annotations.{i}.visible": Flag(f"{name}_shown") for i, name in enumerate(_NOTED)},
+}
+TUNING_TITLE = Text("{controller}: max ‖e_p‖ after 1 s {max_position_error_mm:.4g} mm, at rest "
+                    "{final_position_error_mm:.3g} mm, peak f3 {peak_f3:.0f} N, chattering {chattering:.3g}<br>"
+                    "{duration:.0f} s simulated at {dt_ms:g} ms (compiled loop)")
 
 
-def tuning_update(state, points: int = 600) -> dict:
-    """What changes in :func:`tuning_figure` from one run to another (of any controller): every trace's data
-    (by role, ``TUNING_ROLES``), the names and colours of the error and of the run's own signal, the signal's
-    axis (log or linear, its title) and the title."""
-    res = state["result"]
-    traces = {role: dict(x=x, y=y) for role, (x, y) in zip(TUNING_ROLES, tuning_series(res, points))}
-    name, colour, log = tuning_signal(res)
-    traces["position error"].update(name=run_label(res), line=dict(color=run_colour(res), width=1.8))
-    traces["signal"].update(name=name, line=dict(color=colour, width=1.5))
-    axis = dict(type="log" if log else "linear", exponentformat="power" if log else None, title=dict(text=name))
-    return dict(traces=traces, title=tuning_title(res, state["summary"], tuning_extra(state)),
-                layout={_SIGNAL_AXIS: axis})
-
-
-def tuning_pair(points: int = 600) -> FigurePair:
-    """The controllers panel's figure pair (:func:`tuning_figure` and :func:`tuning_update`)."""
-    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
-
-    def build(state):
-        return tuning_figure(state["result"], state["summary"], tuning_extra(state), points=points)
-
-    return FigurePair("tuning", build, lambda state: tuning_update(state, points), TUNING_ROLES)
+def tuning_bindings() -> dict:
+    """The bindings of the panel's figure ``"tuning"`` for its :class:`~scara.plots.panels.PageProgram`:
+    ``traces``, ``paths`` and ``titles``."""
+    return dict(traces={"tuning": TUNING_TRACES}, paths={"tuning": TUNING_PATHS}, titles={"tuning": TUNING_TITLE})

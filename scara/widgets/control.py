@@ -1,21 +1,20 @@
 """Live tuning panel of chapter 6: choose a controller, move its gains, the independent-joint pole ``omega``,
 the robust term's ``rho`` and ``epsilon``, the adaptation weight ``K_pi``, the integral gain ``K_I`` and the true
-payload; the whole 70 s run is re-simulated (about 0.1 s) and redrawn at once. Jupyter only."""
+payload; the whole 70 s run is re-simulated and redrawn at once, by the panel's page program (the same compiled
+kernel in Jupyter and, translated, in the book's page)."""
 from __future__ import annotations
-
-import re
 
 import numpy as np
 
-from ..control import (
-    AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController, control_summary,
-)
+from ..control import AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController
 from ..errors import ScaraError, check_count
-from ..plots._common import CONTROLLER_LABELS, FIGURE_BUDGET, MAX_POINTS
-from ..plots.control import TUNING_CONTROLLERS, tuning_pair
-from ..plots.panels import Control, Panel, start_value
-from ._common import LivePanel, readable, trajectory_arg
 from ..params import ScaraParams
+from ..plots._common import CONTROLLER_LABELS, FIGURE_BUDGET, MAX_POINTS
+from ..plots.control import TUNING_CONTROLLERS, TUNING_ROLES, tuning_bindings, tuning_build
+from ..plots.panels import Control, Flag, PageProgram, Panel, Text, program_panel, start_value
+from ..programs.control import (ADAPTIVE_K_D, INPUTS, control_compact, control_data, control_outputs, control_prepare,
+                                control_program, control_refusals)
+from ._common import LivePanel, trajectory_arg
 
 __all__ = ["control_panel", "control_declaration", "make_controller"]
 
@@ -42,20 +41,21 @@ def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, 
     if key == "robust":
         return RobustController(K_P=K_P, K_D=K_D, rho=rho, epsilon=epsilon, Lambda=Lambda)
     if key == "adaptive":
-        return AdaptiveController(Lambda=Lambda, K_D=K_D_scale * np.array([600.0, 300.0, 1000.0, 60.0]),
+        return AdaptiveController(Lambda=Lambda, K_D=K_D_scale * np.array(ADAPTIVE_K_D),
                                   K_pi={"m3": K_pi})
     return OperationalSpaceController(integral=key == "operational", K_P=K_P, K_D=K_D, K_I=K_I)
 
 
 def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 600) -> Panel:
-    """The controllers panel as data (:class:`~scara.plots.panels.Panel`); see :func:`control_panel`."""
+    """The controllers panel as data (:class:`~scara.plots.panels.Panel`, made by
+    :func:`~scara.plots.panels.program_panel`); see :func:`control_panel`. Every move is one run of its page
+    program (:func:`scara.programs.control.control_program`) on the data of
+    :func:`~scara.programs.control.control_data`, drawn by the bindings of :func:`scara.plots.control.tuning_bindings`
+    into :func:`~scara.plots.control.tuning_build`."""
     payload = start_value(payload, 0.0, 10.0, "payload", "kg")
     points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
     p = ScaraParams.resolve(p)
     traj = trajectory_arg(traj, p)
-    from .._clik import clik2  # noqa: PLC0415
-
-    jref = clik2(traj, p=p)
     controls = (
         Control("controller", "dropdown", "controller", "robust", options=_CONTROLLERS),
         Control("payload", "slider", "true payload m_L (kg)", payload, 0.0, 10.0, 0.5, unit="kg"),
@@ -70,30 +70,17 @@ def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 6
         _gain("K_I", "K_I (1/s³)", 8000.0, 10.0, 1e6, ".0f", "operational", unit="1/s³"),
         _gain("omega", "ω, independent joint (rad/s)", 30.0, 1.0, 300.0, ".3g", "independent", unit="rad/s"),
     )
-
-    def compute(v):
-        c = make_controller(v["controller"], v["K_P"], v["K_D"], v["Lambda"], v["rho"], v["epsilon"],
-                            v["K_D_scale"], v["K_pi"], v["K_I"], v["omega"])
-        plant = p.with_payload(float(v["payload"]))
-        res = c.run(traj, plant, joint_reference=jref if c.reference_kind == "joint" else None)
-        theory = c.steady_state_error(plant, res.q[-1])[2] if c.name == "operational_noint" else None
-        return dict(controller=c, plant=plant, payload=v["payload"], result=res, summary=control_summary(res),
-                    theory=theory)
-
-    def summary(st):
-        s = st["summary"]
-        notes = []
-        if s["final_position_error"] > 1e-3:
-            notes.append(f"At rest the tool stays {1e3 * s['final_position_error']:.3g} mm from its target: "
-                         "the payload's weight is not fully compensated.")
-        return (), notes
-
-    def explain(exc, values):
-        # the panel gives every joint or component the same gain: name the gain, not its first entry
-        return readable(re.sub(r"\[0\]", "", str(exc)))
-
-    return Panel("controllers", "Chapter 6: tune a controller on the 70 s run", controls, compute,
-                 (tuning_pair(points),), summary, explain, selector="controller")
+    compact = control_compact(traj, p, points)  # a planned path travels as its plan, sampled by control_prepare
+    data = dict(data=control_data(traj, p, points)) if compact is None else \
+        dict(data=compact[1], prepare=control_prepare, compact=compact[0])
+    outputs = control_outputs(len(traj.t), points)
+    note = Text("At rest the tool stays {final_position_error_mm:.3g} mm from its target: the payload's weight is not "
+                "fully compensated.")
+    program = PageProgram(control_program, INPUTS, outputs=outputs, refusals=control_refusals(p), **tuning_bindings(),
+                          notes=((Flag("not_compensated"), note),), **data)
+    return program_panel("controllers", "Chapter 6: tune a controller on the 70 s run", controls, program,
+                         {"tuning": tuning_build}, widget="control_panel", selector="controller",
+                         roles={"tuning": TUNING_ROLES})
 
 
 def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) -> LivePanel:
@@ -103,8 +90,9 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600) ->
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
     lumped mass ``m3``, ``K_I`` (1/s^3), and the true payload (kg) of the plant (the controllers never know it).
     The sliders a controller does not read are greyed out. Each change re-runs the 70 s reference (``traj``,
-    default the reference of chapter 3; the joint reference of ``clik2`` is computed once) and redraws the
-    error, the torques and the controller's own signal. Settings the package refuses (non-positive gains,
+    default the reference of chapter 3; the joint controllers track its ``clik2`` joint reference) in one compiled
+    program and redraws the error, the torques and the controller's own signal (with its own figures in a note
+    above it). Settings the package refuses (non-positive gains,
     ``Lambda >= K_D``, an unstable integral, a run that diverges or breaks a bound) are reported in the panel
     with the time and cause.
 
