@@ -4,7 +4,7 @@
   ``_static/`` and loaded as a plain script in the head of the pages that hold a figure, before the figures'
   inline scripts run.
 - MathJax comes from ``sphinx-mathjax-offline`` (local ``mathjax_path``).
-- Saved ipywidgets state is dropped: live panels are kernel-only and their cells carry ``remove-output``.
+- Saved ipywidgets state is dropped: the pages show a live panel's own HTML (``page_panels``), not its widgets.
 - Duplicate inline scripts (stock pages declare sphinx-thebe's configuration twice, which logs a
   SyntaxError in the browser) are dropped.
 """
@@ -39,7 +39,7 @@ def _page_context(app, pagename, templatename, context, doctree):
         seen, unique = set(), []
         for s in scripts:
             if getattr(s, "attributes", {}).get("type") == WIDGET_STATE:
-                continue  # saved widget state: the book shows no widgets (live panels are kernel-only)
+                continue  # saved widget state: the pages show the page panels, not widgets
             key = (getattr(s, "filename", None) or "", tuple(sorted(getattr(s, "attributes", {}).items())))
             if key in seen:
                 continue

@@ -48,14 +48,24 @@ if (typeof self !== 'undefined' && typeof module === 'undefined') {
   const store = {};
   self.onmessage = (ev) => {
     const m = ev.data;
-    if (m.type === 'data') { store[m.panel] = SCARA_RUNTIME.$arr(Float64Array.from(m.data)); return; }
+    if (m.type === 'data') {
+      let data = Float64Array.from(m.data);
+      if (m.prepare) {  // the data made from its compact form by the program's own kernel, once
+        const full = new Float64Array(m.size);
+        const status = SCARA_KERNELS[m.prepare](data, full);
+        if (Number(status) !== 0) { store[m.panel] = new Error(m.prepare + ' refused the panel data (status ' + status + ')'); return; }
+        data = full;
+      }
+      store[m.panel] = data;
+      return;
+    }
     const t0 = performance.now();
     try {
       const fn = SCARA_KERNELS[m.kernel];
       if (!fn) throw new Error('the engine has no program ' + m.kernel);
+      if (store[m.panel] instanceof Error) throw store[m.panel];
       const out = new Float64Array(m.size);
-      const status = fn(SCARA_RUNTIME.$arr(Float64Array.from(m.inputs)), store[m.panel],
-                        new SCARA_RUNTIME.A(out, 0, m.size, 0, 1));
+      const status = fn(Float64Array.from(m.inputs), store[m.panel], out);
       self.postMessage({id: m.id, panel: m.panel, status: Number(status), out: out, compute_ms: performance.now() - t0},
                        [out.buffer]);
     } catch (err) {
@@ -68,8 +78,8 @@ if (typeof self !== 'undefined' && typeof module === 'undefined') {
 
 
 def program_kernels() -> dict:
-    """Every page program of the package: the kernels named ``*_program`` in the modules of
-    :mod:`scara.programs`, by name."""
+    """Every page program of the package, and the kernels that prepare their data: the kernels named
+    ``*_program`` or ``*_prepare`` in the modules of :mod:`scara.programs`, by name."""
     import scara.programs as programs  # noqa: PLC0415
 
     found = {}
@@ -77,7 +87,8 @@ def program_kernels() -> dict:
         mod = importlib.import_module(f"scara.programs.{info.name}")
         for name, value in vars(mod).items():
             fn = getattr(value, "py_func", value)
-            if name.endswith("_program") and callable(value) and getattr(fn, "__module__", "") == mod.__name__:
+            if name.endswith(("_program", "_prepare")) and callable(value) and \
+                    getattr(fn, "__module__", "") == mod.__name__:
                 if name in found:
                     raise ValueError(f"two page programs are called {name!r}")
                 found[name] = value
@@ -86,9 +97,13 @@ def program_kernels() -> dict:
 
 def engine_source() -> str:
     """The engine script: every page program translated (with the kernels they call) and the worker's loop."""
+    from .._compile import VECTOR  # noqa: PLC0415
+
     kernels = program_kernels()
+    signatures = None if VECTOR is None else {
+        name: (VECTOR, VECTOR) if name.endswith("_prepare") else (VECTOR, VECTOR, VECTOR) for name in kernels}
     return "// Generated from the scara package's kernels by scara.page.translate: do not edit.\n" + \
-        translate(list(kernels.values()), exports=kernels) + WORKER
+        translate(list(kernels.values()), exports=kernels, signatures=signatures) + WORKER
 
 
 def _plain(value):

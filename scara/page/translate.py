@@ -20,9 +20,11 @@ The subset (what the translator accepts):
   two dimensions) and :data:`NUMPY` scalar functions; ``a.shape[k]``; ``a[lo:hi]`` (a view: entries, or rows of a
   2-D array), ``a[i, :]``, ``a[i, lo:hi]`` and ``a[i]`` of a 2-D array (a row view), ``a.reshape(n, m)``.
 
-In the script a float array is an object of the runtime's class ``A`` (data, offset, shape), a tuple a
-JavaScript array, a namedtuple an object holding its entries both by position and by field name. The runtime
-(``RUNTIME``, the helpers every translated kernel calls) is part of the script.
+In the script a 1-D float array is a ``Float64Array``, a 2-D one a ``Float64Array`` of its rows one after the
+other with the row length in ``.n1``, a tuple a JavaScript array, a namedtuple an array whose entries are also
+under their field names: indexing is JavaScript's own, as fast as V8 makes it. A negative index must be a
+literal (``a[-1]``), as in every kernel of the package. The runtime (``RUNTIME``, the few helpers the translated
+kernels call) is part of the script.
 """
 from __future__ import annotations
 
@@ -70,65 +72,34 @@ Infinity Math Number A""".split())
 #: ``%``, ``min`` and ``max`` (which keep their first argument on a NaN comparison)
 RUNTIME = r"""
 "use strict";
-class A {
-  constructor(d, o, n0, n1, nd) { this.d = d; this.o = o; this.n0 = n0; this.n1 = n1; this.nd = nd; }
-  row(i) {
-    if (i < 0) i += this.n0;
-    if (!(i >= 0 && i < this.n0)) throw new RangeError("row " + i + " of an array of " + this.n0 + " rows");
-    return new A(this.d, this.o + i * this.n1, this.n1, 0, 1);
-  }
-}
-function $arr(v) {  // a float array from a typed array or a list (one dimension), or {shape, data}
-  if (v instanceof A) return v;
-  if (v && v.shape) {
-    const d = Float64Array.from(v.data);
-    return v.shape.length === 2 ? new A(d, 0, v.shape[0], v.shape[1], 2) : new A(d, 0, d.length, 0, 1);
-  }
-  const d = v instanceof Float64Array ? v : Float64Array.from(v);
-  return new A(d, 0, d.length, 0, 1);
-}
-function $empty(n) { n = $size(n); return new A(new Float64Array(n), 0, n, 0, 1); }
-function $empty2(n, m) { n = $size(n); m = $size(m); return new A(new Float64Array(n * m), 0, n, m, 2); }
+// A 1-D float array is a Float64Array; a 2-D one a Float64Array of its rows one after the other, with the row
+// length in .n1; a tuple is a JavaScript array; a namedtuple an array with its fields also by name.
 function $size(n) {
   if (!(Number.isInteger(n) && n >= 0)) throw new RangeError("array size " + n + " is not a count");
   return n;
 }
-function $g(a, i) {
-  if (a instanceof A) {
-    if (a.nd === 2) return a.row(i);
-    if (i < 0) i += a.n0;
-    return a.d[a.o + i];
-  }
-  return a[i < 0 ? i + a.length : i];
-}
-function $s(a, i, v) {
-  if (a.nd !== 1) throw new TypeError("setting a whole row of a 2-D array is not in the subset");
-  if (i < 0) i += a.n0;
-  a.d[a.o + i] = v;
-}
-function $g2(a, i, j) {
-  if (i < 0) i += a.n0;
-  if (j < 0) j += a.n1;
-  return a.d[a.o + i * a.n1 + j];
-}
-function $s2(a, i, j, v) {
-  if (i < 0) i += a.n0;
-  if (j < 0) j += a.n1;
-  a.d[a.o + i * a.n1 + j] = v;
-}
+function $empty2(n, m) { const a = new Float64Array($size(n) * $size(m)); a.n1 = m; return a; }
+function $row(a, i) { const m = a.n1; return a.subarray(i * m, i * m + m); }
+function $g1(a, i) { return a.n1 !== undefined ? $row(a, i) : a[i]; }         // a[i]: an entry, or a row's view
+function $g2(a, i, j) { return a.n1 !== undefined ? a[i * a.n1 + j] : a[i][j]; }  // a[i][j]
+function $n0(a) { return a.n1 !== undefined ? a.length / a.n1 : a.length; }
 function $slice(a, lo, hi) {  // a[lo:hi]: entries of a 1-D array, rows of a 2-D one (a view)
-  const n = a.n0;
+  const n = $n0(a);
   lo = lo === null ? 0 : (lo < 0 ? Math.max(lo + n, 0) : Math.min(lo, n));
   hi = hi === null ? n : (hi < 0 ? Math.max(hi + n, 0) : Math.min(hi, n));
-  if (a.nd === 2) return new A(a.d, a.o + lo * a.n1, Math.max(hi - lo, 0), a.n1, 2);
-  return new A(a.d, a.o + lo, Math.max(hi - lo, 0), 0, 1);
+  hi = Math.max(hi, lo);
+  if (a.n1 === undefined) return a.subarray(lo, hi);
+  const v = a.subarray(lo * a.n1, hi * a.n1);
+  v.n1 = a.n1;
+  return v;
 }
-function $reshape(a, n, m) {
-  if (a.nd !== 1 || n * m !== a.n0) throw new RangeError("cannot reshape " + a.n0 + " entries to (" + n + ", " + m + ")");
-  return new A(a.d, a.o, n, m, 2);
+function $reshape(a, n, m) {  // a contiguous array (1-D, or rows of a 2-D one) seen as (n, m): a view
+  if (!(a instanceof Float64Array) || n * m !== a.length) throw new RangeError("cannot reshape " + a.length + " entries to (" + n + ", " + m + ")");
+  const v = a.subarray(0, a.length);
+  v.n1 = m;
+  return v;
 }
-function $len(a) { return a instanceof A ? a.n0 : a.length; }
-function $shape(a, k) { if (k === 0) return a.n0; if (k === 1 && a.nd === 2) return a.n1; throw new RangeError("shape[" + k + "]"); }
+function $shape(a, k) { if (k === 0) return $n0(a); if (k === 1 && a.n1 !== undefined) return a.n1; throw new RangeError("shape[" + k + "]"); }
 function $floordiv(a, b) { return Math.floor(a / b); }
 function $mod(a, b) { const r = a % b; return (r !== 0 && (r < 0) !== (b < 0)) ? r + b : r; }
 function $min(a, ...b) { for (const x of b) { if (x < a) a = x; } return a; }
@@ -139,6 +110,11 @@ function $degrees(x) { return x * (180.0 / Math.PI); }
 function $radians(x) { return x * (Math.PI / 180.0); }
 function $sign(x) { return x > 0 ? 1 : (x < 0 ? -1 : (x === 0 ? 0 : NaN)); }
 function $pow(a, b) { return Math.pow(a, b); }
+function $arr(v) {  // a float array from a typed array, a list, or {shape, data} (two dimensions)
+  if (v instanceof Float64Array) return v;
+  if (v && v.shape) { const d = Float64Array.from(v.data); if (v.shape.length === 2) d.n1 = v.shape[1]; return d; }
+  return Float64Array.from(v);
+}
 """
 
 
@@ -192,9 +168,12 @@ def _number(value) -> str:
 class _Function:
     """The translation of one kernel (see :func:`translate`)."""
 
-    def __init__(self, fn, unit):
+    def __init__(self, fn, unit, args=None):
         self.fn = fn
         self.unit = unit
+        self.types, callees = (None, {}) if args is None else _infer(fn, args)
+        for callee, cargs in callees.items():
+            unit.argtypes.setdefault(translated_name(callee), cargs)
         self.name = translated_name(fn)
         try:
             lines, self.first = inspect.getsourcelines(fn)
@@ -417,47 +396,116 @@ class _Function:
                 tmp = self.fresh()
                 pre += f"{ind}{tmp} = {js};\n"
                 js = tmp
-            idx.append(js)
+            idx.append(self.index(e, arr, js, len(idx)))
         if len(idx) > 2:
             self.refuse(t, "an array of more than two dimensions")
         return pre, arr, idx
 
     def index_get(self, arr, idx, node) -> str:
-        return f"$g({arr}, {idx[0]})" if len(idx) == 1 else f"$g2({arr}, {idx[0]}, {idx[1]})"
+        if len(idx) == 1:
+            return f"{arr}[{idx[0]}]" if self.ndim(node.value) in (0, 1) else f"$g1({arr}, {idx[0]})"
+        return f"{arr}[{idx[0]} * {arr}.n1 + {idx[1]}]"
 
     def index_set(self, arr, idx, value, node, ind) -> str:
-        if len(idx) == 1:
-            return f"{ind}$s({arr}, {idx[0]}, {value});\n"
-        return f"{ind}$s2({arr}, {idx[0]}, {idx[1]}, {value});\n"
+        target = f"{arr}[{idx[0]}]" if len(idx) == 1 else f"{arr}[{idx[0]} * {arr}.n1 + {idx[1]}]"
+        return f"{ind}{target} = {value};\n"
+
+    def index(self, node, arr: str, js: str, axis: int = 0) -> str:
+        """The JavaScript index of ``node`` along ``axis`` of ``arr``: a negative literal counts from the end, as
+        in Python; a negative index that is not a literal is outside the subset (it would read past the array)."""
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and isinstance(node.operand, ast.Constant):
+            return f"({arr}.n1 - {_number(node.operand.value)})" if axis else f"($n0({arr}) - {_number(node.operand.value)})"
+        return js
 
     def subscript(self, e) -> str:
         sl = e.slice
         if isinstance(e.value, ast.Attribute) and e.value.attr == "shape" and not isinstance(sl, (ast.Slice, ast.Tuple)):
             return f"$shape({self.expr(e.value.value)}, {self.expr(sl)})"
-        arr = self.expr(e.value)
         if isinstance(sl, ast.Slice):
             if sl.step is not None:
                 self.refuse(e, "a slice with a step")
+            arr = self.expr(e.value)
             lo = "null" if sl.lower is None else self.expr(sl.lower)
             hi = "null" if sl.upper is None else self.expr(sl.upper)
             return f"$slice({arr}, {lo}, {hi})"
         if isinstance(sl, ast.Tuple):
+            arr = self.expr(e.value)
             if len(sl.elts) != 2:
                 self.refuse(e, "an array of more than two dimensions")
             i, j = sl.elts
-            if isinstance(j, ast.Slice):
-                if j.step is None and not isinstance(i, ast.Slice):
-                    row = f"{arr}.row({self.expr(i)})"
-                    if j.lower is None and j.upper is None:
-                        return row
-                    lo = "null" if j.lower is None else self.expr(j.lower)
-                    hi = "null" if j.upper is None else self.expr(j.upper)
-                    return f"$slice({row}, {lo}, {hi})"
-                self.refuse(e, "a slice of a 2-D array other than a[i, :]")
             if isinstance(i, ast.Slice):
-                self.refuse(e, "a column slice a[:, j]")
-            return f"$g2({arr}, {self.expr(i)}, {self.expr(j)})"
-        return f"$g({arr}, {self.expr(sl)})"
+                self.refuse(e, "a slice of rows with a column index (a[lo:hi, j])")
+            ii = self.index(i, arr, self.expr(i))
+            if isinstance(j, ast.Slice):
+                if j.step is not None:
+                    self.refuse(e, "a slice with a step")
+                row = f"$row({arr}, {ii})"
+                if j.lower is None and j.upper is None:
+                    return row
+                lo = "null" if j.lower is None else self.expr(j.lower)
+                hi = "null" if j.upper is None else self.expr(j.upper)
+                return f"$slice({row}, {lo}, {hi})"
+            return f"{arr}[{ii} * {arr}.n1 + {self.index(j, arr, self.expr(j), 1)}]"
+        # a[i][j]: one element of a 2-D array (or of a tuple of arrays), with no row view made
+        inner = e.value
+        if isinstance(inner, ast.Subscript) and not isinstance(inner.slice, (ast.Slice, ast.Tuple)) and not (
+                isinstance(inner.value, ast.Attribute) and inner.value.attr == "shape"):
+            nd = self.ndim(inner.value)
+            if nd != 0 and (_simple(inner.value) or isinstance(inner.value, ast.Attribute)):
+                arr = self.expr(inner.value)
+                i = self.index(inner.slice, arr, self.expr(inner.slice))
+                j = self.index(sl, arr, self.expr(sl), 1)
+                return f"{arr}[{i} * {arr}.n1 + {j}]" if nd == 2 else f"$g2({arr}, {i}, {j})"
+        arr = self.expr(e.value)
+        nd = self.ndim(e.value)
+        i = self.index(sl, arr, self.expr(sl))
+        if nd == 2:
+            return f"$row({arr}, {i})"
+        if nd in (0, 1):
+            return f"{arr}[{i}]"
+        return f"$g1({arr}, {i})"
+
+    # -- numba's types of expressions (None when unknown) ---------------------------------------------------
+    def ty(self, node):
+        if self.types is None:
+            return None
+        from numba.core import types as nt  # noqa: PLC0415
+
+        if isinstance(node, ast.Name):
+            t = self.types.get(node.id)
+            return None if t is _MIXED else t
+        if isinstance(node, ast.Attribute):
+            bt = self.ty(node.value)
+            if isinstance(bt, nt.BaseNamedTuple):
+                fields = bt.instance_class._fields
+                if node.attr in fields:
+                    return bt.types[fields.index(node.attr)]
+            return None
+        if isinstance(node, ast.Subscript):
+            bt = self.ty(node.value)
+            sl = node.slice
+            if isinstance(bt, nt.Array):
+                if isinstance(sl, ast.Slice):
+                    return bt
+                n = len(sl.elts) if isinstance(sl, ast.Tuple) else 1
+                if isinstance(sl, ast.Tuple) and any(isinstance(x, ast.Slice) for x in sl.elts):
+                    return bt.copy(ndim=1)
+                return bt.dtype if n == bt.ndim else bt.copy(ndim=bt.ndim - n)
+            if isinstance(bt, nt.BaseTuple) and not isinstance(sl, (ast.Slice, ast.Tuple)):
+                if isinstance(bt, nt.UniTuple):
+                    return bt.dtype
+                if isinstance(sl, ast.Constant) and isinstance(sl.value, int):
+                    return bt.types[sl.value]
+            return None
+        return None
+
+    def ndim(self, node):
+        """1 or 2 for an array of known type, 0 for a known non-array (tuple), None when unknown."""
+        t = self.ty(node)
+        if t is None:
+            return None
+        nd = _array_ndim(t)
+        return 0 if nd is None else nd
 
     # -- expressions ----------------------------------------------------------------------------------
     def name_of(self, node) -> str:
@@ -556,7 +604,7 @@ class _Function:
             self.refuse(e, f"the attribute {base.id}.{e.attr}")
         if e.attr in ("shape", "size", "ndim"):
             if e.attr == "size":
-                return f"$len({self.expr(base)})"
+                self.refuse(e, "a.size (use len(a) of a 1-D array)")
             self.refuse(e, f"a.{e.attr} as a value (use a.shape[k])")
         if e.attr.startswith("_") and not e.attr.startswith("__"):
             return f"{self.expr(base)}.{e.attr}"
@@ -585,6 +633,8 @@ class _Function:
                 if isinstance(mod, types.ModuleType):
                     value = getattr(mod, f.attr, None)
                     return self.call_value(e, value, f"{base.id}.{f.attr}", args)
+            if f.attr == "reshape" and self.ndim(base) == 2 and not _contiguous_rows(self.ty(base)):
+                self.refuse(e, "reshape of an array that is not contiguous")
             if f.attr == "reshape":
                 dims = e.args
                 if len(dims) == 1 and isinstance(dims[0], ast.Tuple):
@@ -614,7 +664,8 @@ class _Function:
         if value is int:
             return f"$int({args[0]})"
         if value is len:
-            return f"$len({args[0]})"
+            nd = self.ndim(e.args[0])
+            return f"{args[0]}.length" if nd in (0, 1) else f"$n0({args[0]})"
         if value is bool:
             return f"(!!{args[0]})"
         if value is range:
@@ -623,18 +674,12 @@ class _Function:
             fields = value._fields
             if len(args) != len(fields):
                 self.refuse(e, f"{label}() with {len(args)} values for its {len(fields)} fields")
-            by_pos = ", ".join(f"{i}: {a}" for i, a in enumerate(args))
-            by_name = ", ".join(f"{n}: {a}" for n, a in zip(fields, args))
-            temps = [self.fresh() for _ in args]
-            assign = ", ".join(f"{t} = {a}" for t, a in zip(temps, args))
-            by_pos = ", ".join(f"{i}: {t}" for i, t in enumerate(temps))
-            by_name = ", ".join(f"{n}: {t}" for n, t in zip(fields, temps))
-            return f"({assign}, {{{by_pos}, {by_name}, length: {len(args)}}})"
+            return f"{self.unit.namedtuple(value)}({', '.join(args)})"
         if _is_kernel(value):
             fn = _python(value)
             if fn is self.fn:
                 self.refuse(e, "recursion")
-            self.unit.need(fn)
+            self.unit.need(value)
             return f"{translated_name(fn)}({', '.join(args)})"
         if getattr(builtins, label, None) is value:
             self.refuse(e, f"the builtin {label}()")
@@ -649,16 +694,74 @@ class _Function:
             shape = e.args[0] if e.args else None
             if isinstance(shape, ast.Tuple):
                 if len(shape.elts) == 1:
-                    return f"$empty({self.expr(shape.elts[0])})"
+                    return f"new Float64Array($size({self.expr(shape.elts[0])}))"
                 if len(shape.elts) == 2:
                     return f"$empty2({self.expr(shape.elts[0])}, {self.expr(shape.elts[1])})"
                 self.refuse(e, "an array of more than two dimensions")
             if len(e.args) != 1:
                 self.refuse(e, f"np.{name} with {len(e.args)} arguments")
-            return f"$empty({args[0]})"
+            return f"new Float64Array($size({args[0]}))"
         if name in NUMPY:
             return f"{NUMPY[name]}({', '.join(args)})"
         self.refuse(e, f"np.{name}")
+
+
+def _safe_field(name: str) -> str:
+    if name in ("length", "n1", "constructor", "prototype", "__proto__") or name in _RESERVED:
+        raise TranslationError(f"a namedtuple field called {name!r} cannot be kept in the page's engine")
+    return name
+
+
+def _infer(fn, args):
+    """numba's type inference of the function ``fn`` for the argument types ``args`` (no code is generated):
+    ``(variable types by name, {callee's Python function: its argument types})``, or ``(None, {})`` when
+    numba is missing or cannot type it (the kernel is then translated with run-time dispatch)."""
+    try:
+        from numba.core import compiler, typed_passes  # noqa: PLC0415
+        from numba.core import types as nt  # noqa: PLC0415
+        from numba.core.registry import cpu_target  # noqa: PLC0415
+    except ImportError:  # pragma: no cover
+        return None, {}
+    try:
+        interp = compiler.run_frontend(fn)
+        res = typed_passes.type_inference_stage(cpu_target.typing_context, cpu_target.target_context, interp,
+                                                tuple(args), None)
+    except Exception:  # noqa: BLE001 - an untyped translation is still exact, only slower
+        return None, {}
+    callees = {}
+    for expr, sig in res.calltypes.items():
+        if getattr(expr, "op", None) != "call" or sig is None:
+            continue
+        fty = res.typemap.get(expr.func.name)
+        if isinstance(fty, nt.Dispatcher):
+            callees.setdefault(fty.dispatcher.py_func, tuple(sig.args))
+    return _named(res.typemap), callees
+
+
+def _named(typemap):
+    out = {}
+    for key, ty in typemap.items():
+        if key.startswith("$"):
+            continue
+        name = key[4:] if key.startswith("arg.") else key.split(".")[0]
+        if name in out and out[name] != ty:
+            out[name] = _MIXED
+        else:
+            out.setdefault(name, ty)
+    return out
+
+
+_MIXED = object()  # a variable whose versions have different types
+
+
+def _array_ndim(ty):
+    from numba.core import types as nt  # noqa: PLC0415 - typed translation happens with numba only
+
+    return ty.ndim if isinstance(ty, nt.Array) else None
+
+
+def _contiguous_rows(ty) -> bool:
+    return getattr(ty, "layout", "C") == "C"
 
 
 def _simple(node) -> bool:
@@ -673,11 +776,29 @@ class _Unit:
         self.functions: "collections.OrderedDict[str, str]" = collections.OrderedDict()
         self.pending: list = []
         self.constants: dict = {}
+        self.factories: dict = {}
+        self.argtypes: dict = {}
 
-    def need(self, fn):
-        name = translated_name(fn)
+    def need(self, obj, args=None):
+        """Translate the kernel ``obj`` too; ``args`` are its argument types (numba's), when known: the
+        translation is then typed (see :func:`_infer`)."""
+        name = translated_name(obj)
+        if args is not None:
+            self.argtypes.setdefault(name, tuple(args))
+        elif getattr(obj, "overloads", None):
+            self.argtypes.setdefault(name, next(iter(obj.overloads)))
         if name not in self.functions and all(translated_name(p) != name for p in self.pending):
-            self.pending.append(fn)
+            self.pending.append(obj)
+
+    def namedtuple(self, cls) -> str:
+        """The factory of the namedtuple class ``cls``: an array of its values, each also under its field's name."""
+        name = "$nt$" + (cls.__module__ + "." + cls.__qualname__).replace(".", "$")
+        if name not in self.factories:
+            f = [_safe_field(x) for x in cls._fields]
+            args = ", ".join(f"v{i}" for i in range(len(f)))
+            sets = " ".join(f"t.{n} = v{i};" for i, n in enumerate(f))
+            self.factories[name] = f"function {name}({args}) {{ const t = [{args}]; {sets} return t; }}\n"
+        return name
 
     def constant(self, value: tuple) -> str:
         def js(v):
@@ -697,20 +818,24 @@ class _Unit:
             if name in self.functions:
                 continue
             self.functions[name] = None  # placeholder: a cycle is caught as recursion below
-            self.functions[name] = _Function(fn, self).source()
+            self.functions[name] = _Function(_python(fn), self, self.argtypes.get(name)).source()
 
 
-def translate(kernels, exports: dict | None = None) -> str:
+def translate(kernels, exports: dict | None = None, signatures: dict | None = None) -> str:
     """One JavaScript script holding the translation of ``kernels`` and of every kernel they call, the
     runtime (:data:`RUNTIME`) first.
 
     ``kernels`` is a list of kernels (numba dispatchers or their Python functions). The script defines the
     object ``SCARA_KERNELS`` mapping each given kernel's ``__name__`` (or the names of ``exports``, a dict
     name -> kernel, when given) to its translation, and exports it under Node (``module.exports``), so the same
-    file serves a Web Worker and the tests. Raises :class:`TranslationError` for a construct outside the subset
+    file serves a Web Worker and the tests. ``signatures`` (name -> numba argument types) types the given
+    kernels; a kernel without one is typed from its first compiled overload when it has one. From a typed
+    kernel numba's type inference types the kernels it calls, and the translation indexes arrays and tuples
+    directly (untyped, it dispatches at run time: the same numbers, more slowly). Raises :class:`TranslationError` for a construct outside the subset
     (see the module's docstring), naming the kernel, its file and line.
     """
     unit = _Unit()
+    signatures = dict(signatures or {})
     named = dict(exports or {})
     for k in kernels:
         named.setdefault(_python(k).__name__, k)
@@ -719,12 +844,12 @@ def translate(kernels, exports: dict | None = None) -> str:
         fn = _python(k)
         if not _is_kernel(fn):
             raise TranslationError(f"{name}: {k!r} is not a kernel of the package (a Python function)")
-        unit.need(fn)
+        unit.need(k, signatures.get(name))
         by_js[name] = translated_name(fn)
     unit.run()
     consts = "".join(f"const {name} = {text};\n" for text, name in unit.constants.items())
     table = ",\n".join(f"  {name}: {js}" for name, js in by_js.items())
-    return (RUNTIME + consts + "".join(unit.functions.values()) +
+    return (RUNTIME + consts + "".join(unit.factories.values()) + "".join(unit.functions.values()) +
             f"const SCARA_KERNELS = {{\n{table}\n}};\n"
-            "const SCARA_RUNTIME = {A, $arr, $empty, $empty2};\n"
+            "const SCARA_RUNTIME = {$arr, $empty2, $reshape, $n0};\n"
             "if (typeof module !== 'undefined') module.exports = {SCARA_KERNELS, SCARA_RUNTIME};\n")

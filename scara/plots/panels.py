@@ -25,7 +25,8 @@ from typing import Any, Callable
 from ..errors import ScaraError, check_number
 
 __all__ = ["Control", "FigurePair", "Panel", "KINDS", "SCALES", "start_value", "angle_control", "stroke_control",
-           "apply_update", "rebuilt_update", "range_template", "set_path", "PageProgram", "Text", "Flag", "program_panel"]
+           "apply_update", "rebuilt_update", "range_template", "set_path", "PageProgram", "Pick", "Text", "Flag",
+           "program_panel"]
 
 #: the kinds of control: a slider, a dropdown of choices, a typed number, an on/off toggle
 KINDS = ("slider", "dropdown", "number", "toggle")
@@ -100,7 +101,9 @@ class Control:
 def angle_control(value_rad, name: str, label: str, applies_to=None) -> Control:
     """A slider in degrees over [-180°, 180°] (step 1°) starting at ``value_rad`` (rad), checked by
     :func:`start_value`."""
-    deg = math.degrees(check_number(value_rad, name, unit="rad"))
+    # 12 significant digits: the degrees of radians(60) read 60, not 59.99999999999999 (radians(60.0) is the same
+    # float as pi / 3, so the configuration drawn does not change)
+    deg = float(f"{math.degrees(check_number(value_rad, name, unit='rad')):.12g}")
     return Control(name, "slider", label, deg, -180.0, 180.0, 1.0, unit="°", applies_to=applies_to)
 
 
@@ -293,6 +296,19 @@ class Flag:
 
 
 @dataclass(frozen=True)
+class Pick:
+    """A control's new value read from a program's data when another control changes (:attr:`PageProgram.react`):
+    the number at ``offset + stride * settings[index]`` (``index`` names a dropdown whose values are indices),
+    as it is (``as_="value"``), as whether it is above 0 (``"flag"``), or only when it is above 0
+    (``"positive"``: the control is left alone otherwise)."""
+
+    offset: int
+    stride: int
+    index: str
+    as_: str = "value"
+
+
+@dataclass(frozen=True)
 class PageProgram:
     """The computation of a panel's move as one compiled kernel, with how its outputs are drawn.
 
@@ -309,6 +325,15 @@ class PageProgram:
     output field (one number, or its numbers as an array), a :class:`Text`, a :class:`Flag` or a tuple of
     bindings (a list). :attr:`rows` are the summary's ``(label, Text)`` rows and :attr:`notes` its ``(Flag,
     Text)`` notes. Both front ends draw from these: the same properties set to the same numbers.
+
+    Data too long for a page (a sampled 70 s path) is given in a compact form: ``prepare(compact, data) -> int``,
+    a kernel, writes the data (``data`` is then its size) from ``compact`` (a planned path's vector), here once
+    and in the page once, where only ``compact`` travels.
+
+    A panel whose moves build on each other (the waypoint editor: each accepted edit is the plan the next one
+    starts from) names in ``carry = (field, offset)`` an output written into ``data`` at ``offset`` after every
+    accepted move, and in ``react`` the controls a change sets from the data: ``{control: {other control:
+    Pick}}`` (pick a waypoint, its sliders show its values). Both front ends do both, from these declarations.
     """
 
     kernel: Callable
@@ -321,8 +346,25 @@ class PageProgram:
     titles: dict = None
     rows: tuple = ()
     notes: tuple = ()
+    prepare: Callable | None = None
+    compact: Any = None
+    carry: tuple | None = None
+    react: dict = None
 
     def __post_init__(self):
+        if self.carry is not None and self.prepare is not None:
+            raise ScaraError("a program with a prepared data cannot carry an output into it")
+        object.__setattr__(self, "react", dict(self.react or {}))
+        if self.prepare is not None and _np.ndim(self.data) == 0:
+            # the data made from a compact form by a kernel, which the page runs once on the same compact form
+            compact = _np.array(self.compact, dtype=_np.float64).ravel()
+            full = _np.zeros(int(self.data))
+            status = int(self.prepare(compact, full))
+            if status != 0:
+                raise ScaraError(f"{getattr(self.prepare, '__name__', self.prepare)} refused its compact data "
+                                 f"(status {status})")
+            object.__setattr__(self, "compact", compact)
+            object.__setattr__(self, "data", full)
         object.__setattr__(self, "data", _np.array(self.data, dtype=_np.float64).ravel())
         object.__setattr__(self, "paths", dict(self.paths or {}))
         object.__setattr__(self, "titles", dict(self.titles or {}))
@@ -396,6 +438,24 @@ class PageProgram:
             raise ScaraError(self.refusals[status].format(values))
         return values
 
+    def carried(self, values: dict) -> None:
+        """After an accepted move: the :attr:`carry` output written into :attr:`data`."""
+        if self.carry is not None:
+            field, offset = self.carry
+            v = _np.atleast_1d(values[field])
+            self.data[int(offset):int(offset) + v.size] = v
+
+    def reacted(self, name: str, settings: dict) -> dict:
+        """The controls a change of ``name`` sets (:attr:`react`), read from :attr:`data`."""
+        out = {}
+        for target, k in self.react.get(name, {}).items():
+            v = float(self.data[k.offset + k.stride * int(settings[k.index])])
+            if k.as_ == "flag":
+                out[target] = v > 0
+            elif k.as_ == "value" or v > 0:
+                out[target] = v
+        return out
+
     def values(self, out, settings: dict) -> dict:
         """The outputs of ``out`` by field (one number as a float, more as an array) with the settings."""
         values = dict(settings)
@@ -444,7 +504,13 @@ class PageProgram:
         return dict(
             kernel=getattr(self.kernel, "__name__", str(self.kernel)),
             inputs=[dict(name=n, kind=controls[n].kind, values=list(controls[n].values)) for n in self.inputs],
-            data=self.data.tolist(),
+            # the data as the bytes of its float64s (base64): exact, NaN included, and short
+            data=_b64((self.compact if self.prepare is not None else self.data)),
+            prepare=None if self.prepare is None else getattr(self.prepare, "__name__", str(self.prepare)),
+            data_size=int(self.data.size),
+            carry=None if self.carry is None else dict(field=self.carry[0], offset=int(self.carry[1])),
+            react={name: {target: dict(offset=int(k.offset), stride=int(k.stride), index=k.index, as_=k.as_)
+                          for target, k in picks.items()} for name, picks in self.react.items()},
             outputs=[dict(name=n, offset=o, size=self.outputs.sizes[n])
                      for n, o in zip(self.outputs.names, self.outputs.offsets)],
             size=self.outputs.size,
@@ -455,6 +521,13 @@ class PageProgram:
             titles={role: t.template for role, t in self.titles.items()},
             rows=[[label, t.template] for label, t in self.rows],
             notes=[[f.field, t.template] for f, t in self.notes])
+
+
+def _b64(a) -> dict:
+    import base64  # noqa: PLC0415
+
+    a = _np.ascontiguousarray(a, dtype="<f8")
+    return {"float64": base64.b64encode(a.tobytes()).decode("ascii")}
 
 
 def program_panel(name: str, title: str, controls: tuple, program: PageProgram, builders: dict, widget: str,
@@ -468,5 +541,13 @@ def program_panel(name: str, title: str, controls: tuple, program: PageProgram, 
     roles = roles or {}
     figures = tuple(FigurePair(role, build, (lambda values, role=role: program.update(role, values)),
                                tuple(roles.get(role, ()))) for role, build in builders.items())
-    return Panel(name, title, controls, lambda settings: program.run(settings, by_name), figures,
-                 program.summary, explain, react, selector, columns, widget, program)
+
+    def compute(settings):
+        values = program.run(settings, by_name)
+        program.carried(values)
+        return values
+
+    if react is None and program.react:
+        react = program.reacted
+    return Panel(name, title, controls, compute, figures, program.summary, explain, react, selector, columns, widget,
+                 program)

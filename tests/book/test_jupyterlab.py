@@ -155,18 +155,29 @@ def check_waypoints(values, figs):
     marker = next(t for t in top["traces"] if t["name"].startswith("editing "))
     assert np.allclose([marker["x"][0], marker["y"][0]], [values["x"], values["y"]], atol=1e-5)
     kind = "via point" if values["via"] else "stop point"
-    pts = _trace(top, kind)
-    assert np.min(np.hypot(np.array(pts["x"]) - values["x"], np.array(pts["y"]) - values["y"])) < 1e-5
+    pts = _trace(top, kind)  # every waypoint, a gap (NaN, None from the browser) where it is of the other kind
+    assert np.nanmin(np.hypot(np.array(pts["x"], float) - values["x"], np.array(pts["y"], float) - values["y"])) < 1e-5
     # the path passes through a stop point; it rounds a via point
     path = _trace(top, "path")
-    gap = np.min(np.hypot(np.array(path["x"]) - values["x"], np.array(path["y"]) - values["y"]))
+    gap = np.nanmin(np.hypot(np.array(path["x"], float) - values["x"], np.array(path["y"], float) - values["y"]))
     assert (gap < 1e-4) if not values["via"] else (gap > 1e-5), gap
     assert f"(editing {marker['name'][8:]})" in top["title"]
 
 
+_CLIK_DECLARATIONS = {}
+
+
+def _clik_declaration(traj):
+    """The CLIK panel as the chapter declares it on ``traj`` (made once per trajectory)."""
+    from scara.widgets.clik import clik_declaration
+
+    if id(traj) not in _CLIK_DECLARATIONS:
+        _CLIK_DECLARATIONS[id(traj)] = (traj, clik_declaration(traj))
+    return _CLIK_DECLARATIONS[id(traj)][1]
+
+
 def check_clik(values, figs, traj):
     from scara import clik, clik2, second_order_gains
-    from scara.plots.clik import METHOD_LABELS
     from scara.widgets.clik import _METHODS
 
     m = _METHODS[values["method"]]
@@ -180,7 +191,11 @@ def check_clik(values, figs, traj):
     else:  # the transpose solves no linear system: its panel does not read the (greyed-out) damping
         r = clik(traj, m, K)
     mm = r.summary()["max_position_error"] * 1e3
-    assert figs[0]["title"] == f"{METHOD_LABELS[m]}: max ‖e_p‖ after 0.1 s = {mm:.4g} mm", figs[0]["title"]
+    # the title the panel declares (its template, filled with the dropdown's text and the run's error)
+    declared = _clik_declaration(traj)
+    assert values["method"] in declared.control("method").values, values["method"]
+    expected = declared.page.titles["clik"].format(dict(values, max_ep_mm=mm))
+    assert figs[0]["title"] == expected, (figs[0]["title"], expected)
 
 
 def check_dynamics(values, figs):

@@ -321,50 +321,103 @@ def _same_data(state, fig_json, traces=None):
             assert _same(a.get(key), b.get(key)), (i, key)
 
 
+def _package_run(values, traj, jref):
+    """The run and summary the package's own API gives for the controllers panel's settings ``values``. The panel's
+    program solves the robust law's Lyapunov equation in closed form (scipy's solve agrees to about 1e-12): the
+    controller is given that solution, so that both runs are the same arithmetic."""
+    from scara import ScaraParams
+    from scara.control import control_summary
+    from scara.control.robust import sliding_rows
+    from scara.widgets.control import make_controller
+
+    keys = ("K_P", "K_D", "Lambda", "rho", "epsilon", "K_D_scale", "K_pi", "K_I", "omega")
+    ctl = make_controller(values["controller"], *(values[k] for k in keys))
+    if ctl.name == "robust":
+        Z = np.empty(32)
+        sliding_rows(ctl.K_P, ctl.K_D, ctl.Lambda, Z)
+        ctl.sliding = Z.reshape(4, 8)
+    res = ctl.run(traj, ScaraParams().with_payload(values["payload"]),
+                  joint_reference=jref if ctl.reference_kind == "joint" else None)
+    return res, control_summary(res)
+
+
 def test_fast_redraws_equal_full_figures():
     """After the first draw the panels send only new data and titles (no layout rebuilt): what they show
     must equal the figure the builder draws from scratch for the same run."""
-    from scara import reference_trajectory
+    from scara import clik2, reference_trajectory
     from scara.plots.control import tuning_figure
     from scara.plots.trajectory import profiles_figure, top_view_figure
 
     traj = reference_trajectory()
+    jref = clik2(traj)
     c = control_panel(traj)
     c.controls["K_P"].value = 1500.0
-    st = c.state
-    full = tuning_figure(st["result"], st["summary"], "x", points=600)
+    res, summary = _package_run(c.values(), traj, jref)   # the same run by the package's own API
+    full = tuning_figure(res, summary, "x", points=600)
     _same_data(c._states[0], full.to_plotly_json())
+    _same_data(c._states[0], c.declaration.figures[0].build(c.state).to_plotly_json())
     assert c.figures[0].layout.title.text.split("<br>")[0] == full.layout.title.text.split("<br>")[0]
     for name in ("adaptive (Slotine-Li)", "operational ID, no integral", "robust"):  # another law, same figure
         c.controls["controller"].value = name
-        st = c.state
-        full = tuning_figure(st["result"], st["summary"], "x", points=600).to_plotly_json()
+        res, summary = _package_run(c.values(), traj, jref)
+        full = tuning_figure(res, summary, "x", points=600).to_plotly_json()
         _same_data(c._states[0], full)
-        for t, f in zip(c._states[0]["data"], full["data"]):
-            assert t["line"]["color"] == f["line"]["color"]
-        assert c._states[0]["layout"]["yaxis4"].get("type", "linear") == full["layout"]["yaxis4"].get("type", "linear")
-        assert c._states[0]["layout"]["yaxis4"]["title"] == full["layout"]["yaxis4"]["title"]
+        built = c.declaration.figures[0].build(c.state).to_plotly_json()
+        _same_data(c._states[0], built)
+        for t, f, b in zip(c._states[0]["data"], full["data"], built["data"]):
+            assert t["line"]["color"] == f["line"]["color"] == b["line"]["color"]
+            assert t.get("visible", True) == f.get("visible", True) == b.get("visible", True)
+        for axis in ("yaxis4", "yaxis5", "yaxis6"):   # the run's own signal, on its own axis
+            shown = c._states[0]["layout"][axis]
+            assert shown.get("type", "linear") == full["layout"][axis].get("type", "linear")
+            assert shown["title"] == full["layout"][axis]["title"] and shown["visible"] == built["layout"][axis]["visible"]
+            assert shown["visible"] == full["layout"][axis]["visible"]
+
+    # the waypoint editor: its figures are drawn from its program's outputs (float64, every waypoint in both the
+    # stop and the via trace, NaN where a point is of the other kind), so after each move what it shows must be
+    # the full rebuild from the same values: every trace property, the title and the shapes (the profiles' bands)
+    from scara.widgets._common import _widget_safe
 
     ed = waypoint_editor()
-    ed.panel.controls["x"].value = 0.08
+    c = ed.panel.controls
+    for key, value in (("x", 0.08), ("duration", 4.0), ("point", 7), ("via", True), ("y", 0.1)):
+        c[key].value = value
+        assert ed.panel.last_error is None, (key, ed.panel.last_error)
+        assert len(ed.panel._states) == len(ed.panel.declaration.figures) == 2
+        for state, pair in zip(ed.panel._states, ed.panel.declaration.figures):
+            full = _widget_safe(pair.build(ed.panel.state).to_plotly_json())
+            assert len(state["data"]) == len(full["data"]), (key, pair.role)
+            for i, (a, b) in enumerate(zip(state["data"], full["data"])):
+                assert a.keys() == b.keys() and all(_same(a[p], b[p]) for p in b), (key, pair.role, i)
+            assert state["layout"]["title"]["text"] == full["layout"]["title"]["text"], (key, pair.role)
+            assert _same(state["layout"].get("shapes"), full["layout"].get("shapes")), (key, pair.role)
+    # and what it shows is the plan the package's planner gives for the edited waypoints: the bands shown are
+    # those of profiles_figure, the arm and the waypoints those of top_view_figure (which rounds to 0.1 mm)
     traj2 = ed.trajectory
-    from scara.widgets.trajectory import PROFILE_POINTS, TOP_POINTS
-
-    _same_data(ed.panel._states[0], top_view_figure(traj2, points=TOP_POINTS).to_plotly_json())
-    _same_data(ed.panel._states[1], profiles_figure(traj2, points=PROFILE_POINTS).to_plotly_json())
-    assert ed.panel._states[1]["layout"]["shapes"] == profiles_figure(traj2).to_plotly_json()["layout"]["shapes"]
+    shown = [{k: v for k, v in s.items() if k != "visible"} for s in ed.panel._states[1]["layout"]["shapes"]
+             if s.get("visible", True)]
+    assert _same(shown, _widget_safe(profiles_figure(traj2).to_plotly_json())["layout"]["shapes"])
+    top = _widget_safe(top_view_figure(traj2).to_plotly_json())["data"]
+    drawn = {t["name"]: t for t in ed.panel._states[0]["data"]}
+    for t in top:
+        if t["name"] in ("arm at t = 0", "stop point", "via point"):
+            for axis in ("x", "y"):
+                xs = np.array(drawn[t["name"]][axis], float)
+                np.testing.assert_allclose(xs[np.isfinite(xs)], np.array(t[axis], float), atol=1e-4)
 
     k = clik_panel(traj)
     first = k._states[0]["data"][0]["y"].copy()
     k.controls["Kx"].value = 600.0
+    from scara import clik
     from scara.plots.clik import envelope
 
-    r = k.state["result"]
+    r = clik(traj, "inverse", [600.0, 400.0, 400.0, 100.0])  # the run the panel's program made
     assert not _same(first, k._states[0]["data"][0]["y"])
     assert _same(k._states[0]["data"][0]["y"], envelope(r.t, r.position_error, 800)[1].astype(float))
     k.controls["method"].value = "Jacobian transpose"
-    assert k._states[0]["data"][0]["name"] == "Jacobian transpose"
-    assert k._states[0]["data"][0]["line"]["color"] == k._states[0]["data"][2]["line"]["color"] != "#0072B2"
+    shown = [t for t in k._states[0]["data"] if t.get("visible") is not False]  # a trace per method, one shown
+    assert len(shown) == 3 and shown[0]["name"] == "Jacobian transpose"
+    assert shown[0]["line"]["color"] == shown[2]["line"]["color"] != "#0072B2"
 
 
 def _moves():

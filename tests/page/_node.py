@@ -17,24 +17,21 @@ NODE = shutil.which("node")
 _DRIVER = r"""
 const fs = require('fs');
 const {SCARA_KERNELS, SCARA_RUNTIME} = require(process.argv[2]);
-const {A} = SCARA_RUNTIME;
 const calls = JSON.parse(fs.readFileSync(process.argv[3], 'utf8'));
 function dec(v) {
   if (v && v.b64 !== undefined) {
     const buf = Buffer.from(v.b64, 'base64');
     const d = new Float64Array(buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.byteLength));
-    return v.shape.length === 2 ? new A(d, 0, v.shape[0], v.shape[1], 2) : new A(d, 0, d.length, 0, 1);
+    if (v.shape.length === 2) d.n1 = v.shape[1];
+    return d;
   }
   if (v && v.num !== undefined) return Number(v.num);
   if (Array.isArray(v)) return v.map(dec);
   return v;
 }
 function enc(v) {
-  if (v instanceof A) {
-    const n = v.nd === 2 ? v.n0 * v.n1 : v.n0;
-    const d = v.d.slice(v.o, v.o + n);
-    return {b64: Buffer.from(d.buffer).toString('base64'), shape: v.nd === 2 ? [v.n0, v.n1] : [v.n0]};
-  }
+  if (v instanceof Float64Array) return {b64: Buffer.from(v.slice().buffer).toString('base64'),
+                                         shape: v.n1 !== undefined ? [v.length / v.n1, v.n1] : [v.length]};
   if (typeof v === 'number') return {num: String(v)};
   if (typeof v === 'boolean') return {num: v ? '1' : '0'};
   if (Array.isArray(v)) return v.map(enc);

@@ -152,6 +152,10 @@
     if (parent) parent.appendChild(e);
     return e;
   }
+  function float64(v) {  // {float64: base64 of little-endian float64s} (PageProgram.describe) to a Float64Array
+    const bytes = Uint8Array.from(atob(v.float64), (ch) => ch.charCodeAt(0));
+    return new Float64Array(bytes.buffer);
+  }
   function plain(x) { return x instanceof Float64Array ? Array.from(x, (v) => (Number.isNaN(v) ? null : v)) : x; }
   function setPath(tree, path, value) {
     const keys = path.split(".");
@@ -180,11 +184,42 @@
       this.stale = false;
       this.values = Object.assign({}, spec.values);
       this.defaults = Object.assign({}, spec.values);
+      this.data = float64(this.prog.data);  // the panel's data; a carry updates it after a move
       this.build();
       const saved = readAddress()[this.name];
       if (saved) this.load(saved);
-      engine().postMessage({type: "data", panel: this.name, data: this.prog.data});
+      this.send();
       this.schedule(performance.now());
+    }
+
+    send() {  // the data to the engine (prepared there from its compact form when the program has a prepare)
+      engine().postMessage({type: "data", panel: this.name, data: this.data, prepare: this.prog.prepare,
+                            size: this.prog.data_size});
+    }
+
+    react(name) {  // the controls a change of `name` sets, read from the data (PageProgram.react)
+      const picks = (this.prog.react || {})[name];
+      if (!picks) return;
+      for (const [target, k] of Object.entries(picks)) {
+        const v = this.data[k.offset + k.stride * Number(this.values[k.index])];
+        const c = this.spec.controls.find((x) => x.name === target);
+        let value;
+        if (k.as_ === "flag") value = v > 0;
+        else if (k.as_ === "value" || v > 0) value = v;
+        else continue;
+        this.values[target] = value;
+        this.show(c, value);
+      }
+    }
+
+    show(c, v) {  // a control's input showing the value v
+      const input = this.inputs[c.name];
+      if (c.kind === "dropdown") input.value = String(c.options.findIndex(([, x]) => JSON.stringify(x) === JSON.stringify(v)));
+      else if (c.kind === "toggle") input.checked = !!v;
+      else {
+        input.value = String(Number(Number(v).toPrecision(12)));
+        if (this.ranges[c.name]) this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v);
+      }
     }
 
     build() {
@@ -243,7 +278,7 @@
         }
         input = el("input", {type: "number", name: c.name, step: "any", inputmode: "decimal"}, wrap);
         if (c.kind === "slider") { input.min = String(c.low); input.max = String(c.high); }
-        input.value = String(this.values[c.name]);
+        input.value = String(Number(Number(this.values[c.name]).toPrecision(12)));
         if (c.unit) el("span", {class: "scara-panel-unit", text: c.unit}, wrap);
       }
       input.addEventListener("change", (ev) => this.changed(c, input, ev));
@@ -261,12 +296,19 @@
 
     changed(c, input, ev) {
       const v = this.read(c, input);
-      if (v instanceof Error) { this.values[c.name] = input.value; this.refuse(v.message); return; }
+      this.move = (this.move || 0) + 1;
+      if (v instanceof Error) {
+        this.values[c.name] = input.value;
+        this.refusedAt = this.move;  // a result of an earlier move, still on its way, is not drawn over this
+        this.refuse(v.message);
+        return;
+      }
       this.values[c.name] = v;
       if (c.kind === "slider" && ev && ev.target === input && this.ranges[c.name]) {
         this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v);
       }
-      if (c.name === this.spec.selector) this.grey();
+      this.react(c.name);
+      if (c.name === this.spec.selector || (this.prog.react || {})[c.name]) this.grey();
       this.schedule(performance.now());
     }
 
@@ -296,13 +338,10 @@
     }
 
     reset() {
-      for (const c of this.spec.controls) {
-        const v = this.defaults[c.name], input = this.inputs[c.name];
-        if (c.kind === "dropdown") input.value = String(c.options.findIndex(([, x]) => JSON.stringify(x) === JSON.stringify(v)));
-        else if (c.kind === "toggle") input.checked = !!v;
-        else { input.value = String(v); if (this.ranges[c.name]) this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v); }
-      }
+      this.move = (this.move || 0) + 1;
+      for (const c of this.spec.controls) this.show(c, this.defaults[c.name]);
       this.values = Object.assign({}, this.defaults);
+      if (this.prog.carry) { this.data = float64(this.prog.data); this.send(); }
       this.grey();
       writeAddress(this.name, null);
       this.schedule(performance.now());
@@ -319,7 +358,7 @@
     }
 
     schedule(t0) {
-      const job = {t0, values: Object.assign({}, this.values)};
+      const job = {t0, values: Object.assign({}, this.values), move: this.move || 0};
       if (this.busy) { this.pending = job; return; }
       this.run(job);
     }
@@ -327,6 +366,7 @@
     run(job) {  // the engine computes one move at a time; the page draws the last result meanwhile
       this.busy = true;
       const id = nextId++;
+      job.values = Object.assign({}, this.values);  // what this run computes: the latest settings
       const inputs = this.pack();
       waiting[id] = (m) => this.done(job, m);
       engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
@@ -357,9 +397,15 @@
 
     done(job, m) {
       const tc = performance.now();
+      const v = m.error ? null : this.outputs(m.out, job.values);
+      if (v && m.status === 0 && this.prog.carry) {  // an accepted move: the next one starts from its result
+        const c = this.prog.carry, f = this.prog.outputs.find((x) => x.name === c.field);
+        this.data.set(m.out.subarray(f.offset, f.offset + f.size), c.offset);
+        this.send();
+      }
       this.next();  // a move made meanwhile starts computing now, while this one is drawn
+      if (job.move < (this.refusedAt || 0)) return;  // a later setting was refused: this result is not current
       if (m.error) { this.refuse(m.error); return; }
-      const v = this.outputs(m.out, job.values);
       if (m.status !== 0) {
         const t = this.prog.refusals[String(m.status)];
         this.refuse(t === undefined ? "the panel's program returned status " + m.status + ", which it does not declare" : format(t, v));
@@ -367,12 +413,12 @@
       }
       const draws = this.figures.map((f) => {
         const role = f.spec.role;
+        // back from a refusal: every trace as the first figure had it, then the bound properties (visible too)
+        if (this.stale) f.fig.data.forEach((t, i) => { t.visible = f.spec.figure.data[i].visible === undefined ? true : f.spec.figure.data[i].visible; });
         for (const [key, props] of Object.entries(this.prog.traces[role] || {})) {
           const i = f.spec.index[key];
           for (const [prop, b] of Object.entries(props)) f.fig.data[i][prop] = this.bound(b, v);
-          if (this.stale) f.fig.data[i].visible = f.spec.figure.data[i].visible === undefined ? true : f.spec.figure.data[i].visible;
         }
-        if (this.stale) f.fig.data.forEach((t, i) => { t.visible = f.spec.figure.data[i].visible === undefined ? true : f.spec.figure.data[i].visible; });
         for (const [path, b] of Object.entries(this.prog.paths[role] || {})) setPath(f.fig.layout, path, this.bound(b, v));
         const title = this.prog.titles[role];
         if (title !== undefined) f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: format(title, v)});
@@ -388,7 +434,8 @@
       Promise.all(draws).then(() => {
         this.table(rows);
         this.notes.replaceChildren(...notes.map((n) => el("div", {text: "⚠ " + n})));
-        this.record({compute_ms: m.compute_ms, draw_ms: performance.now() - tc, total_ms: performance.now() - job.t0});
+        this.record({compute_ms: m.compute_ms, draw_ms: performance.now() - tc, total_ms: performance.now() - job.t0},
+                    job.values);
         this.address();
       });
     }
@@ -403,9 +450,9 @@
       this.info.replaceChildren(...(rows.length ? [t] : []));
     }
 
-    record(timings) {
+    record(timings, values) {  // the settings the figures now show (a move's own, not those made since)
       this.seq += 1;
-      this.valuesEl.textContent = JSON.stringify(Object.assign({values: this.values, seq: this.seq}, timings || {}));
+      this.valuesEl.textContent = JSON.stringify(Object.assign({values: values || this.values, seq: this.seq}, timings || {}));
       this.root.dispatchEvent(new CustomEvent("scara-redraw", {detail: {seq: this.seq, timings}}));
     }
 

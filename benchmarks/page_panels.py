@@ -1,0 +1,147 @@
+"""Latency of the book's page panels in headless Chromium on this machine, per control, and the page's compute
+time beside numba's for the same program.
+
+    .venv/bin/python benchmarks/page_panels.py [--moves 15] [--html _build/html]
+
+Serves the built book, opens each page that holds a panel (every request outside the book refused), and for every
+control of every panel makes ``--moves`` moves through its native input (a typed value committed, an option
+picked, a box ticked), each waiting for the redraw. A move's latency is what the page records from the input
+event to the last figure's redraw (``total_ms`` in ``.scara-panel-values``). Prints, per control, the median and
+largest latency, then per panel the median compute time in the page's worker against numba's best time for the
+same program and inputs (the ratio, one run, same machine).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "book")]
+
+from jupyterlab_driver import ARGS, CHROMIUM  # noqa: E402
+from page_checks import serve  # noqa: E402
+from page_panel_driver import open_page, panel_spec, seq, set_control, state, wait_seq  # noqa: E402
+
+
+def _moves(c, n, rng):
+    if c["kind"] == "dropdown":
+        return [c["options"][i % len(c["options"])][1] for i in range(1, n + 1)]
+    if c["kind"] == "toggle":
+        return [bool(i % 2) for i in range(1, n + 1)]
+    if c["kind"] == "slider":
+        if c["scale"] == "log":
+            return [float(f"{10 ** rng.uniform(math.log10(c['low']), math.log10(c['high'])):.5g}") for _ in range(n)]
+        return [float(f"{rng.uniform(c['low'], c['high']):.5g}") for _ in range(n)]
+    return [float(f"{c['default'] + rng.normal(0, 0.02 * (abs(c['default']) + 1)):.5g}") for _ in range(n)]
+
+
+def numba_ms(name: str, inputs, data, size, repeats: int = 20) -> float:
+    """numba's best time (ms) for the program ``name`` on ``inputs``."""
+    from scara.page.assets import program_kernels
+
+    kernel = program_kernels()[name]
+    inp, dat = np.asarray(inputs, float), np.asarray(data, float)
+    kernel(inp, dat, np.zeros(size))  # compiled or loaded from the cache
+    best = math.inf
+    for _ in range(repeats):
+        out = np.zeros(size)
+        t0 = time.perf_counter()
+        kernel(inp, dat, out)
+        best = min(best, time.perf_counter() - t0)
+    return 1e3 * best
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--moves", type=int, default=15)
+    ap.add_argument("--html", default=str(ROOT / "_build" / "html"))
+    args = ap.parse_args(argv)
+    from playwright.sync_api import sync_playwright
+
+    html = Path(args.html)
+    pages = {}
+    for f in sorted((html / "book").glob("*.html")):
+        import re
+
+        names = re.findall(r'data-scara-panel="([^"]+)"', f.read_text(encoding="utf-8"))
+        if names:
+            pages["book/" + f.name] = names
+    httpd, url = serve(html)
+    rng = np.random.default_rng(1)
+    rows, ratios = [], []
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
+        for page, names in pages.items():
+            ctx, pg, errors, outside = open_page(browser, url, page)
+            for name in names:
+                spec = panel_spec(pg, name)
+                wait_seq(pg, name, 0)
+                computes = []
+                for c in spec["controls"]:
+                    lat = []
+                    for value in _moves(c, args.moves, rng):
+                        if pg.is_disabled(f'[data-scara-panel="{name}"] [name="{c["name"]}"]'):
+                            break
+                        s = seq(pg, name)
+                        set_control(pg, name, c["name"], value, c)
+                        wait_seq(pg, name, s)
+                        st = state(pg, name)["values"]
+                        if "total_ms" in st:
+                            lat.append(st["total_ms"])
+                            computes.append((st["compute_ms"], None))
+                    if lat:
+                        rows.append((name, c["name"], len(lat), statistics.median(lat), max(lat)))
+                    set_control(pg, name, c["name"], spec["values"][c["name"]], c)
+                    pg.wait_for_timeout(50)
+                # the page's compute time against numba's, at the book's settings
+                s = seq(pg, name)
+                pg.click(f'[data-scara-panel="{name}"] .scara-panel-reset')
+                wait_seq(pg, name, s)
+                page_ms = []
+                for _ in range(7):
+                    s = seq(pg, name)
+                    c = next(c for c in spec["controls"] if c["kind"] != "toggle")
+                    set_control(pg, name, c["name"], spec["values"][c["name"]], c)
+                    wait_seq(pg, name, s)
+                    page_ms.append(state(pg, name)["values"]["compute_ms"])
+                prog = spec["program"]
+                by = {c["name"]: c for c in spec["controls"]}
+                inputs = []
+                for i in prog["inputs"]:
+                    v = spec["values"][i["name"]]
+                    c = by[i["name"]]
+                    inputs.append([json.dumps(o[1]) for o in c["options"]].index(json.dumps(v)) if c["kind"] == "dropdown"
+                                  else float(bool(v)) if c["kind"] == "toggle" else float(v))
+                import base64
+
+                data = np.frombuffer(base64.b64decode(prog["data"]["float64"]), "<f8")
+                if prog.get("prepare"):
+                    from scara.page.assets import program_kernels
+
+                    full = np.zeros(prog["data_size"])
+                    program_kernels()[prog["prepare"]](data.copy(), full)
+                    data = full
+                nb = numba_ms(prog["kernel"], inputs, data, prog["size"])
+                ratios.append((name, min(page_ms), nb))
+            ctx.close()
+        browser.close()
+    httpd.shutdown()
+    print(f"{'panel':28s} {'control':16s} {'moves':>5s} {'median ms':>10s} {'largest ms':>11s}")
+    for name, c, n, med, mx in rows:
+        print(f"{name:28s} {c:16s} {n:5d} {med:10.1f} {mx:11.1f}")
+    print()
+    print(f"{'panel':28s} {'page compute ms':>16s} {'numba ms':>9s} {'ratio':>6s}")
+    for name, pm, nb in ratios:
+        print(f"{name:28s} {pm:16.2f} {nb:9.3f} {pm / nb if nb > 0 else float('nan'):6.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
