@@ -27,7 +27,7 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "book")]
 
 from jupyterlab_driver import ARGS, CHROMIUM  # noqa: E402
 from page_checks import serve  # noqa: E402
-from page_panel_driver import open_page, panel_spec, seq, set_control, state, wait_seq  # noqa: E402
+from page_panel_driver import open_page, panel_spec, seq, set_control, state, wait_seq, wait_values  # noqa: E402
 
 
 def _moves(c, n, rng):
@@ -84,22 +84,26 @@ def main(argv=None) -> int:
                 spec = panel_spec(pg, name)
                 wait_seq(pg, name, 0)
                 computes = []
+                by = {c["name"]: c for c in spec["controls"]}
                 for c in spec["controls"]:
                     lat = []
+                    sel = spec["selector"]
+                    if c["applies_to"] is not None and sel:  # pick a choice of the selector that reads it
+                        s = seq(pg, name)
+                        set_control(pg, name, sel, c["applies_to"][0], by[sel])
+                        wait_seq(pg, name, s)
                     for value in _moves(c, args.moves, rng):
-                        if pg.is_disabled(f'[data-scara-panel="{name}"] [name="{c["name"]}"]'):
-                            break
                         s = seq(pg, name)
                         set_control(pg, name, c["name"], value, c)
                         wait_seq(pg, name, s)
+                        wait_values(pg, name, {c["name"]: value}, stale=None)
                         st = state(pg, name)["values"]
-                        if "total_ms" in st:
+                        if "total_ms" in st:  # an accepted move (a refused one shows no figure to time)
                             lat.append(st["total_ms"])
-                            computes.append((st["compute_ms"], None))
                     if lat:
                         rows.append((name, c["name"], len(lat), statistics.median(lat), max(lat)))
-                    set_control(pg, name, c["name"], spec["values"][c["name"]], c)
-                    pg.wait_for_timeout(50)
+                    pg.click(f'[data-scara-panel="{name}"] .scara-panel-reset')
+                    wait_values(pg, name, spec["values"])
                 # the page's compute time against numba's, at the book's settings
                 s = seq(pg, name)
                 pg.click(f'[data-scara-panel="{name}"] .scara-panel-reset')
@@ -107,9 +111,10 @@ def main(argv=None) -> int:
                 page_ms = []
                 for _ in range(7):
                     s = seq(pg, name)
-                    c = next(c for c in spec["controls"] if c["kind"] != "toggle")
+                    c = next(c for c in spec["controls"] if c["kind"] != "toggle" and c["applies_to"] is None)
                     set_control(pg, name, c["name"], spec["values"][c["name"]], c)
                     wait_seq(pg, name, s)
+                    wait_values(pg, name, spec["values"])
                     page_ms.append(state(pg, name)["values"]["compute_ms"])
                 prog = spec["program"]
                 by = {c["name"]: c for c in spec["controls"]}
@@ -133,9 +138,17 @@ def main(argv=None) -> int:
             ctx.close()
         browser.close()
     httpd.shutdown()
+    every = [r[3] for r in rows]
     print(f"{'panel':28s} {'control':16s} {'moves':>5s} {'median ms':>10s} {'largest ms':>11s}")
     for name, c, n, med, mx in rows:
         print(f"{name:28s} {c:16s} {n:5d} {med:10.1f} {mx:11.1f}")
+    by_panel = {}
+    for name, c, n, med, mx in rows:
+        by_panel.setdefault(name, []).append((med, mx))
+    print()
+    for name, v in by_panel.items():
+        print(f"{name:28s} median of the controls' medians {statistics.median(m for m, _ in v):6.1f} ms, "
+              f"largest {max(x for _, x in v):6.1f} ms")
     print()
     print(f"{'panel':28s} {'page compute ms':>16s} {'numba ms':>9s} {'ratio':>6s}")
     for name, pm, nb in ratios:

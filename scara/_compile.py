@@ -35,7 +35,7 @@ COMPILED = _numba is not None and os.environ.get("NUMBA_DISABLE_JIT", "0") != "1
 
 
 #: Sub-packages that hold no compiled code (figures and panels): their source does not key the cache.
-UNCOMPILED_PACKAGES = ("plots", "widgets", "page")
+UNCOMPILED_PACKAGES = ("plots", "widgets")
 
 
 def _source_digest() -> str:

@@ -97,11 +97,11 @@ def program_kernels() -> dict:
 
 def engine_source() -> str:
     """The engine script: every page program translated (with the kernels they call) and the worker's loop."""
-    from .._compile import VECTOR  # noqa: PLC0415
+    from ..programs import PREPARE_ARGS, PROGRAM_ARGS  # noqa: PLC0415
 
     kernels = program_kernels()
-    signatures = None if VECTOR is None else {
-        name: (VECTOR, VECTOR) if name.endswith("_prepare") else (VECTOR, VECTOR, VECTOR) for name in kernels}
+    signatures = None if PROGRAM_ARGS is None else {
+        name: PREPARE_ARGS if name.endswith("_prepare") else PROGRAM_ARGS for name in kernels}
     return "// Generated from the scara package's kernels by scara.page.translate: do not edit.\n" + \
         translate(list(kernels.values()), exports=kernels, signatures=signatures) + WORKER
 
