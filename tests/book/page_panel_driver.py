@@ -36,7 +36,7 @@ def state(pg, name):
               message: root.querySelector('.scara-panel-message').textContent,
               figures: Array.from(root.querySelectorAll('.scara-panel-figure .js-plotly-plot')).map(gd => ({
                 data: gd.data.map(t => ({x: t.x, y: t.y, z: t.z, text: t.text, visible: t.visible, name: t.name})),
-                title: (gd.layout.title || {}).text}))};
+                title: gd.closest('.scara-panel-figure').querySelector('.scara-panel-figure-title').textContent}))};
     }""", name)
 
 

@@ -152,6 +152,23 @@
     if (parent) parent.appendChild(e);
     return e;
   }
+  // plotly keeps the objects it is given, and the reader's theme edits them in place (dark colours): it gets
+  // copies, so that the panel's own record of each figure stays the light one the bindings write into
+  function drawable(fig) {
+    const data = fig.data.map((t) => {
+      const c = Object.assign({}, t);
+      for (const k of ["line", "marker", "textfont", "fillcolor"]) if (c[k] && typeof c[k] === "object") c[k] = JSON.parse(JSON.stringify(c[k]));
+      return c;
+    });
+    const layout = JSON.parse(JSON.stringify(fig.layout));
+    // the title is shown above the figure as text, which wraps on a phone (a plotly title does not)
+    if (layout.title) layout.title = Object.assign({}, layout.title, {text: ""});
+    return [data, layout];
+  }
+  function titleText(fig) {  // the figure's title as plain text, plotly's <br> as line breaks
+    const t = (fig.layout.title || {}).text || "";
+    return String(t).replace(/<br\s*\/?>/gi, "\n").replace(/<[^>]*>/g, "");
+  }
   function float64(v) {  // {float64: base64 of little-endian float64s} (PageProgram.describe) to a Float64Array
     const bytes = Uint8Array.from(atob(v.float64), (ch) => ch.charCodeAt(0));
     return new Float64Array(bytes.buffer);
@@ -236,13 +253,18 @@
       for (const c of s.controls) this.control(grid, c);
       this.message = el("div", {class: "scara-panel-message", role: "status", "aria-live": "polite"}, root);
       this.figures = [];
-      for (const f of s.figures) {
-        const box = el("div", {class: "scara-panel-figure"}, root);
-        const gd = el("div", {class: "plotly-graph-div", role: "group", "aria-label": (f.figure.layout.title || {}).text || f.role}, box);
+      s.figures.forEach((f, k) => {
+        // a figure with its caption, which the reader's scripts give the figure as its text alternative
+        const box = el("figure", {class: "scara-panel-figure"}, root);
+        const heading = el("div", {class: "scara-panel-figure-title"}, box);
+        const gd = el("div", {class: "plotly-graph-div"}, el("div", {class: "scara-panel-figure-scroll"}, box));
+        el("figcaption", {class: "scara-panel-caption", text: "Live figure " + (k + 1) + " of the panel \u201c" + s.title +
+          "\u201d, recomputed in this page on every move of its controls."}, box);
         const fig = JSON.parse(JSON.stringify(f.figure));
-        this.figures.push({spec: f, box, gd, fig});
-        Plotly.newPlot(gd, fig.data, fig.layout, {displaylogo: false, responsive: true});
-      }
+        this.figures.push({spec: f, box, gd, fig, heading});
+        heading.textContent = titleText(fig);
+        Plotly.newPlot(gd, ...drawable(fig), {displaylogo: false, responsive: true});
+      });
       this.notes = el("div", {class: "scara-panel-note"}, root);
       this.info = el("div", {class: "scara-panel-info"}, root);
       this.valuesEl = el("span", {class: "scara-panel-values", hidden: ""}, root);
@@ -424,7 +446,8 @@
         if (title !== undefined) f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: format(title, v)});
         else if (this.stale) f.fig.layout.title = JSON.parse(JSON.stringify(f.spec.figure.layout.title || {}));
         f.fig.layout.datarevision = this.seq + 1;
-        return Plotly.react(f.gd, f.fig.data, f.fig.layout).then(() => this.drawn(f));
+        f.heading.textContent = titleText(f.fig);
+        return Plotly.react(f.gd, ...drawable(f.fig)).then(() => this.drawn(f));
       });
       this.stale = false;
       this.root.classList.remove("scara-stale");
@@ -475,7 +498,8 @@
         for (const f of this.figures) {
           f.fig.data.forEach((t) => { t.visible = false; });
           f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: this.spec.stale_title});
-          Plotly.react(f.gd, f.fig.data, f.fig.layout).then(() => this.drawn(f));
+          f.heading.textContent = titleText(f.fig);
+          Plotly.react(f.gd, ...drawable(f.fig)).then(() => this.drawn(f));
         }
       }
       this.record({});
