@@ -1,7 +1,7 @@
 """Latency of the book's page panels in headless Chromium on this machine, per control, and the page's compute
 time beside numba's for the same program.
 
-    .venv/bin/python benchmarks/page_panels.py [--moves 15] [--html _build/html]
+    .venv/bin/python benchmarks/page_panels.py [--moves 15] [--html _build/html] [--panel control_panel ...]
 
 Serves the built book, opens each page that holds a panel (every request outside the book refused), and for every
 control of every panel makes ``--moves`` moves through its native input (a typed value committed, an option
@@ -62,6 +62,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--moves", type=int, default=15)
     ap.add_argument("--html", default=str(ROOT / "_build" / "html"))
+    ap.add_argument("--panel", action="append", help="only this panel (the name of its scara.widgets function)")
     args = ap.parse_args(argv)
     from playwright.sync_api import sync_playwright
 
@@ -71,6 +72,7 @@ def main(argv=None) -> int:
         import re
 
         names = re.findall(r'data-scara-panel="([^"]+)"', f.read_text(encoding="utf-8"))
+        names = [n for n in names if not args.panel or n in args.panel]
         if names:
             pages["book/" + f.name] = names
     httpd, url = serve(html)

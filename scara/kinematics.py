@@ -42,6 +42,7 @@ __all__ = [
     "is_reachable",
     "check_reachable",
     "pose_kernel",
+    "pose_of",
     "jacobian_kernel",
     "jacobian_dot_kernel",
     "ikine_kernel",
@@ -168,9 +169,15 @@ def elbow_cosine(px, py, a1, a2):
 @kernel
 def pose_kernel(q, a1, a2, d0, out):
     """``x_e = k(q) = [p_x, p_y, p_z, phi]`` (1.5) written into ``out`` (4,)."""
-    out[0], out[1] = planar_position(planar_trig(q[0], q[1]), a1, a2)
-    out[2] = d0 - q[2]
-    out[3] = q[0] + q[1] + q[3]
+    out[0], out[1], out[2], out[3] = pose_of(q[0], q[1], q[2], q[3], a1, a2, d0)
+
+
+@kernel
+def pose_of(t1, t2, d3, t4, a1, a2, d0):
+    """``(p_x, p_y, p_z, phi) = k(q)`` (1.5) of the joint values as scalars: the direct kinematics, written once
+    (a loop over a run's samples calls it on ``q[k, i]``, with no view of a row)."""
+    px, py = planar_position(planar_trig(t1, t2), a1, a2)
+    return px, py, d0 - d3, t1 + t2 + t4
 
 
 @kernel

@@ -9,7 +9,7 @@ import numpy as np
 from .._compile import kernel
 from ..dynamics import kinetic_energy, potential_energy
 from ..errors import ScaraError, check_positive
-from ..kinematics import pose_kernel
+from ..kinematics import pose_of
 from ..params import ScaraParams
 
 __all__ = ["SimulationResult"]
@@ -22,9 +22,9 @@ class MissingSignalError(ScaraError, AttributeError):
 
 @kernel
 def _pose_error(q, x_d, a1, a2, d0, x, e):
-    """``x[k] = k(q[k])`` (:func:`~scara.kinematics.pose_kernel`) and ``e[k] = x_d[k] - x[k]`` for every sample."""
+    """``x[k] = k(q[k])`` (:func:`~scara.kinematics.pose_of`) and ``e[k] = x_d[k] - x[k]`` for every sample."""
     for k in range(q.shape[0]):
-        pose_kernel(q[k], a1, a2, d0, x[k])
+        x[k, 0], x[k, 1], x[k, 2], x[k, 3] = pose_of(q[k, 0], q[k, 1], q[k, 2], q[k, 3], a1, a2, d0)
         for i in range(4):
             e[k, i] = x_d[k, i] - x[k, i]
 

@@ -18,11 +18,12 @@ The subset (what the translator accepts):
   unpacked), module-level constants (numbers, tuples of numbers, namedtuple classes), calls of kernels, of
   :data:`MATH` functions, of ``abs min max float int len range``, of ``np.empty``/``np.zeros`` (float64, one or
   two dimensions) and :data:`NUMPY` scalar functions; ``a.shape[k]``; ``a[lo:hi]`` (a view: entries, or rows of a
-  2-D array), ``a[i, :]``, ``a[i, lo:hi]`` and ``a[i]`` of a 2-D array (a row view), ``a.reshape(n, m)``.
+  2-D array), ``a[i, :]``, ``a[i, lo:hi]`` and ``a[i]`` of a 2-D array (a row view), ``a.reshape(n, m)``,
+  ``a.copy()``.
 
 In the script a 1-D float array is a ``Float64Array``, a 2-D one a ``Float64Array`` of its rows one after the
-other with the row length in ``.n1``, a tuple a JavaScript array, a namedtuple an array whose entries are also
-under their field names: indexing is JavaScript's own, as fast as V8 makes it. A negative index must be a
+other with the row length in ``.n1``, a tuple a JavaScript array, a namedtuple an object holding its entries by
+position and by field name: indexing is JavaScript's own, as fast as V8 makes it. A negative index must be a
 literal (``a[-1]``), as in every kernel of the package. The runtime (``RUNTIME``, the few helpers the translated
 kernels call) is part of the script.
 """
@@ -73,13 +74,25 @@ Infinity Math Number A""".split())
 RUNTIME = r"""
 "use strict";
 // A 1-D float array is a Float64Array; a 2-D one a Float64Array of its rows one after the other, with the row
-// length in .n1; a tuple is a JavaScript array; a namedtuple an array with its fields also by name.
+// length in .n1; a tuple is a JavaScript array; a namedtuple an object of its entries by position and by name.
+// Every 2-D array is made by $two, so all have one hidden class: the row length always a small integer (`| 0`; one
+// V8 held as a double, as int() of a float gives, would change the class, and every loop that had seen the old
+// one slowed down 2-6x), then the row views' cache.
 function $size(n) {
   if (!(Number.isInteger(n) && n >= 0)) throw new RangeError("array size " + n + " is not a count");
   return n;
 }
-function $empty2(n, m) { const a = new Float64Array($size(n) * $size(m)); a.n1 = m; return a; }
-function $row(a, i) { const m = a.n1; return a.subarray(i * m, i * m + m); }
+function $two(a, m) {  // a seen as rows of m entries: the row length, and for a small array the cache of its row views
+  a.n1 = m | 0;
+  a.$v = a.length <= 64 * m ? [] : undefined;
+  return a;
+}
+function $empty2(n, m) { return $two(new Float64Array($size(n) * $size(m)), m); }
+function $row(a, i) {  // a row's view; a small array makes each once (a law's work rows: no allocation per step)
+  const m = a.n1, v = a.$v;
+  if (v === undefined) return a.subarray(i * m, i * m + m);
+  return v[i] || (v[i] = a.subarray(i * m, i * m + m));
+}
 function $g1(a, i) { return a.n1 !== undefined ? $row(a, i) : a[i]; }         // a[i]: an entry, or a row's view
 function $g2(a, i, j) { return a.n1 !== undefined ? a[i * a.n1 + j] : a[i][j]; }  // a[i][j]
 function $n0(a) { return a.n1 !== undefined ? a.length / a.n1 : a.length; }
@@ -89,16 +102,13 @@ function $slice(a, lo, hi) {  // a[lo:hi]: entries of a 1-D array, rows of a 2-D
   hi = hi === null ? n : (hi < 0 ? Math.max(hi + n, 0) : Math.min(hi, n));
   hi = Math.max(hi, lo);
   if (a.n1 === undefined) return a.subarray(lo, hi);
-  const v = a.subarray(lo * a.n1, hi * a.n1);
-  v.n1 = a.n1;
-  return v;
+  return $two(a.subarray(lo * a.n1, hi * a.n1), a.n1);
 }
 function $reshape(a, n, m) {  // a contiguous array (1-D, or rows of a 2-D one) seen as (n, m): a view
   if (!(a instanceof Float64Array) || n * m !== a.length) throw new RangeError("cannot reshape " + a.length + " entries to (" + n + ", " + m + ")");
-  const v = a.subarray(0, a.length);
-  v.n1 = m;
-  return v;
+  return $two(a.subarray(0, a.length), m);
 }
+function $copy(a) { const c = a.slice(); return a.n1 !== undefined ? $two(c, a.n1) : c; }  // a.copy()
 function $shape(a, k) { if (k === 0) return $n0(a); if (k === 1 && a.n1 !== undefined) return a.n1; throw new RangeError("shape[" + k + "]"); }
 function $floordiv(a, b) { return Math.floor(a / b); }
 function $mod(a, b) { const r = a % b; return (r !== 0 && (r < 0) !== (b < 0)) ? r + b : r; }
@@ -112,7 +122,7 @@ function $sign(x) { return x > 0 ? 1 : (x < 0 ? -1 : (x === 0 ? 0 : NaN)); }
 function $pow(a, b) { return Math.pow(a, b); }
 function $arr(v) {  // a float array from a typed array, a list, or {shape, data} (two dimensions)
   if (v instanceof Float64Array) return v;
-  if (v && v.shape) { const d = Float64Array.from(v.data); if (v.shape.length === 2) d.n1 = v.shape[1]; return d; }
+  if (v && v.shape) { const d = Float64Array.from(v.data); return v.shape.length === 2 ? $two(d, v.shape[1]) : d; }
   return Float64Array.from(v);
 }
 """
@@ -642,6 +652,8 @@ class _Function:
                 if len(dims) != 2:
                     self.refuse(e, "reshape to other than two dimensions")
                 return f"$reshape({self.expr(base)}, {self.expr(dims[0])}, {self.expr(dims[1])})"
+            if f.attr == "copy" and not e.args and self.ndim(base) in (None, 1, 2):
+                return f"$copy({self.expr(base)})"
             self.refuse(e, f"the method .{f.attr}()")
         if isinstance(f, ast.Name):
             if f.id in self.locals or f.id in self.params:
@@ -791,13 +803,15 @@ class _Unit:
             self.pending.append(obj)
 
     def namedtuple(self, cls) -> str:
-        """The factory of the namedtuple class ``cls``: an array of its values, each also under its field's name."""
+        """The factory of the namedtuple class ``cls``: one object literal holding its values by position and by
+        field name, and its ``length`` (an array-like). A literal of one shape is V8's fastest object: an array
+        given named properties afterwards is not (it made the controllers' loop half as fast)."""
         name = "$nt$" + (cls.__module__ + "." + cls.__qualname__).replace(".", "$")
         if name not in self.factories:
             f = [_safe_field(x) for x in cls._fields]
             args = ", ".join(f"v{i}" for i in range(len(f)))
-            sets = " ".join(f"t.{n} = v{i};" for i, n in enumerate(f))
-            self.factories[name] = f"function {name}({args}) {{ const t = [{args}]; {sets} return t; }}\n"
+            body = ", ".join([f"{i}: v{i}" for i in range(len(f))] + [f"{n}: v{i}" for i, n in enumerate(f)])
+            self.factories[name] = f"function {name}({args}) {{ return {{{body}, length: {len(f)}}}; }}\n"
         return name
 
     def constant(self, value: tuple) -> str:

@@ -4,8 +4,8 @@
 A move (the dropdown's controller, its gains, the true payload) makes the controller as its constructor does (the
 same check kernels: :func:`~scara.control.robust.lambda_status`, :func:`~scara.control.operational.integral_status`,
 :func:`~scara.control.independent.placed_gains`...; the gain arrays packed by the packers of the laws' layouts),
-computes the joint reference (the second-order CLIK of chapter 4, :func:`~scara._clik.kernels._clik2_kernel`) or
-takes the operational one, checks the start and the law's arrays (the guard-entry trial of
+takes the joint reference of its data (the second-order CLIK of chapter 4, :func:`~scara._clik.kernels._clik2_kernel`,
+run once by :func:`fill_joint_reference`) or the operational one, checks the start and the law's arrays (the guard-entry trial of
 :func:`~scara._simulate.interface.check_law_bounds`), runs the closed loop of :mod:`scara._simulate` (the law chosen
 by index, the plant integrated by RK4: the engine's own kernels), and reduces the run to what the panel shows: the
 figures of the chapter's table (:func:`~scara.control.control_summary`), the upper envelope of the position error,
@@ -14,8 +14,10 @@ A setting the package refuses returns the code of its refusal, with the numbers 
 ``out`` (:func:`control_refusals` words them as :func:`scara.simulate` and the controllers do).
 
 Its ``data`` (:func:`control_data`) is the desired trajectory sampled at ``dt`` (``x_d``, ``xd_d``, ``xdd_d``, each
-(N, 4) row-major) after a header (:data:`HEADER`) that declares where each block starts, with the robot, the
-controllers' model and the constants of the laws; the output fields are :func:`control_outputs`.
+(N, 4) row-major) and its joint reference (``q``, ``qd``, ``qdd``, computed once, as it depends on the trajectory
+alone) after a header (:data:`HEADER`) that declares where each block starts and whether the reference was refused,
+with the robot, the controllers' model and the constants of the laws; the output fields are
+:func:`control_outputs`.
 """
 from __future__ import annotations
 
@@ -96,12 +98,13 @@ _ENVELOPES = ("err_t", "err_y", "z_norm")
 #: operational start ``q0``, the controllers' model and the plant without its payload (:data:`~scara.dynamics.
 #: DYNAMIC_LAYOUT` each), the quill's stroke, the stated bounds, the laws' constants, the CLIK's gains, the
 #: panel's ``points`` and the table's windows, the counts and offsets of the output arrays
-HEADER = ArrayLayout(("n", 1), ("dt", 1), ("elbow", 1), ("x_at", 1), ("xd_at", 1), ("xdd_at", 1), ("q0", 4),
+HEADER = ArrayLayout(("n", 1), ("dt", 1), ("elbow", 1), ("x_at", 1), ("xd_at", 1), ("xdd_at", 1), ("jref_at", 1),
+                     ("jref_code", 1), ("q0", 4),
                      ("model", N_DP), ("plant", N_DP), ("d3_min", 1), ("d3_max", 1), ("tau_max", 4),
                      ("max_error", 1), ("limit", 1), ("B_hat", 4), ("B_bar", 4), ("adaptive_K_D", 4),
                      ("clik_K_P", 4), ("clik_K_D", 4), ("clik_max_error", 1), ("points", 1), ("settle", 1),
                      ("rest", 1), ("n_thin", 1), ("n_envelope", 1), ("out_at", len(ARRAYS)))
-(_H_N, _H_DT, _H_ELBOW, _H_X, _H_XD, _H_XDD, _H_Q0, _H_MODEL, _H_PLANT, _H_D3_MIN, _H_D3_MAX, _H_TAU_MAX,
+(_H_N, _H_DT, _H_ELBOW, _H_X, _H_XD, _H_XDD, _H_JREF, _H_JREF_CODE, _H_Q0, _H_MODEL, _H_PLANT, _H_D3_MIN, _H_D3_MAX, _H_TAU_MAX,
  _H_MAX_ERROR, _H_LIMIT, _H_B_HAT, _H_B_BAR, _H_ADAPTIVE_KD, _H_CLIK_KP, _H_CLIK_KD, _H_CLIK_MAX_ERROR, _H_POINTS,
  _H_SETTLE, _H_REST, _H_N_THIN, _H_N_ENV, _H_OUT_AT) = HEADER.offsets
 
@@ -124,6 +127,7 @@ SCALARS = ArrayLayout(
  _O_NOT_COMPENSATED, _O_BAD_VALUE, _O_BAD_LIMIT, _O_FAIL_T, _O_FAIL_K, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_FAIL_D3,
  _O_FAIL_V3, _O_FAIL_CODE, _O_FAIL_THETA2, _O_FAIL_W, _O_FRICTION, _O_REACH, _O_D3_MIN, _O_D3_MAX, _O_START_X,
  _O_START_PY, _O_START_PZ, _O_START_PHI) = SCALARS.offsets
+_SCALARS_SIZE = SCALARS.size
 #: The flag of each law's error trace (``robust_shown`` ...), in the order of :data:`LAWS`
 SHOWN = tuple(f"{name}_shown" for name in LAWS)
 
@@ -423,6 +427,26 @@ def _joint_reference(x, xd, xdd, dt, arm, stroke, elbow, K_P, K_D, max_err, q, q
         out[_O_FAIL_W] = ws[k]
         return _R_CLIK_SINGULAR
     return _R_CLIK_NONFINITE
+
+
+@kernel
+def fill_joint_reference(data, out):
+    """The joint reference of ``data`` (:func:`control_data`), once per panel, not once per move: it depends on the
+    trajectory alone. :func:`_joint_reference` of its ``x_d``, ``xd_d``, ``xdd_d`` with the header's CLIK settings
+    into the block at ``jref_at`` (``q``, ``qd``, ``qdd``, (N, 4) each), its code in ``jref_code``; the numbers a
+    refusal names are written in ``out``. Returns the code (0: the reference is there)."""
+    n = int(data[_H_N])
+    x = _rows(data, int(data[_H_X]), n, 4)
+    xd = _rows(data, int(data[_H_XD]), n, 4)
+    xdd = _rows(data, int(data[_H_XDD]), n, 4)
+    at = int(data[_H_JREF])
+    arm = Geometry(data[_H_PLANT + DP_A1], data[_H_PLANT + DP_A2], data[_H_PLANT + DP_D0])
+    code = _joint_reference(x, xd, xdd, data[_H_DT], arm, (data[_H_D3_MIN], data[_H_D3_MAX]), data[_H_ELBOW],
+                            data[_H_CLIK_KP:_H_CLIK_KP + 4], data[_H_CLIK_KD:_H_CLIK_KD + 4],
+                            data[_H_CLIK_MAX_ERROR], _rows(data, at, n, 4), _rows(data, at + 4 * n, n, 4),
+                            _rows(data, at + 8 * n, n, 4), np.empty((n, 4)), np.empty((n, 4)), np.empty(n), out)
+    data[_H_JREF_CODE] = code
+    return code
 
 
 @kernel
@@ -838,11 +862,10 @@ def control_core(inputs, data, out):
     xdd = data[xdd_at:xdd_at + 4 * n].reshape((n, 4))
     q0 = np.empty(4)
     qd0 = np.empty(4)
-    # the series of the move, all in one block (one allocation: its memory is reused from one move to the next):
-    # the run's q, qd, qdd, tau (N, 4), e (N, 4), the signals (N, n_sig), the error's norm (N,), and for a joint
-    # reference its q, qd, qdd and the CLIK's pose and error (N, 4), manipulability (N,)
+    # the series of the move, all in one block (one allocation): the run's q, qd, qdd, tau (N, 4), e (N, 4), the
+    # signals (N, n_sig), the error's norm (N,)
     joint = _JOINT[law] == 1
-    block = np.empty((21 + n_sig + (21 if joint else 0)) * n)
+    block = np.empty((21 + n_sig) * n)
     q_out = _rows(block, 0, n, 4)
     qd_out = _rows(block, 4 * n, n, 4)
     qdd_out = _rows(block, 8 * n, n, 4)
@@ -850,18 +873,13 @@ def control_core(inputs, data, out):
     e = _rows(block, 16 * n, n, 4)
     pos = block[20 * n:21 * n]
     sig_out = _rows(block, 21 * n, n, n_sig)
-    at = (21 + n_sig) * n
     if joint:
-        ref_pos = _rows(block, at, n, 4)
-        ref_vel = _rows(block, at + 4 * n, n, 4)
-        ref_acc = _rows(block, at + 8 * n, n, 4)
-        arm = Geometry(data[_H_PLANT + DP_A1], data[_H_PLANT + DP_A2], data[_H_PLANT + DP_D0])
-        code = _joint_reference(x, xd, xdd, dt, arm, (d3_min, d3_max), data[_H_ELBOW],
-                                data[_H_CLIK_KP:_H_CLIK_KP + 4], data[_H_CLIK_KD:_H_CLIK_KD + 4],
-                                data[_H_CLIK_MAX_ERROR], ref_pos, ref_vel, ref_acc, _rows(block, at + 12 * n, n, 4),
-                                _rows(block, at + 16 * n, n, 4), block[at + 20 * n:at + 21 * n], out)
-        if code != 0:
-            return code
+        if data[_H_JREF_CODE] != 0:   # the reference refused: its run again, for the numbers its message names
+            return fill_joint_reference(data.copy(), out)
+        at = int(data[_H_JREF])
+        ref_pos = _rows(data, at, n, 4)
+        ref_vel = _rows(data, at + 4 * n, n, 4)
+        ref_acc = _rows(data, at + 8 * n, n, 4)
         for i in range(4):
             q0[i] = ref_pos[0, i]
             qd0[i] = ref_vel[0, i]
@@ -967,18 +985,23 @@ _HEADER_SIZE = HEADER.size
 def control_prepare(compact, data):
     """The ``data`` of :func:`control_program` from its compact form (:func:`control_compact`): the header as it
     is, then ``x_d``, ``xd_d``, ``xdd_d`` sampled from the plan that follows it by the planner's own kernel
-    (:func:`~scara.programs.path.sample_plan`). Returns 0, or the sampler's code (1: the sizes disagree)."""
+    (:func:`~scara.programs.path.sample_plan`), then the joint reference (:func:`fill_joint_reference`). Returns 0,
+    or the sampler's code (1: the sizes disagree)."""
     hs = _HEADER_SIZE
     for i in range(hs):
         data[i] = compact[i]
     n = int(compact[_H_N])
-    if data.shape[0] != hs + 12 * n:
+    if data.shape[0] != hs + 24 * n:
         return 1
     t = np.empty(n)
     x = data[hs:hs + 4 * n].reshape((n, 4))
     xd = data[hs + 4 * n:hs + 8 * n].reshape((n, 4))
     xdd = data[hs + 8 * n:hs + 12 * n].reshape((n, 4))
-    return sample_plan(compact[hs:], t, x, xd, xdd)
+    code = sample_plan(compact[hs:], t, x, xd, xdd)
+    if code != 0:
+        return code
+    fill_joint_reference(data, np.zeros(_SCALARS_SIZE))
+    return 0
 
 
 def control_compact(traj, p: ScaraParams | None = None, points: int = 600):
@@ -1013,13 +1036,16 @@ def control_data(traj, p: ScaraParams | None = None, points: int = 600) -> np.nd
     K_D = 2.0 * np.asarray(SEED_K, dtype=float)
     head = HEADER.size
     header = HEADER.pack(
-        n=n, dt=dt, elbow=elbow, x_at=head, xd_at=head + 4 * n, xdd_at=head + 8 * n, q0=q0,
+        n=n, dt=dt, elbow=elbow, x_at=head, xd_at=head + 4 * n, xdd_at=head + 8 * n, jref_at=head + 12 * n,
+        jref_code=0, q0=q0,
         model=dynamic_array(ScaraParams()), plant=dynamic_array(p.with_payload(0.0)), d3_min=p.d3_min,
         d3_max=p.d3_max, tau_max=TAU_MAX, max_error=MAX_ERROR, limit=LIMIT, B_hat=B_HAT, B_bar=B_BAR,
         adaptive_K_D=ADAPTIVE_K_D, clik_K_P=K_P, clik_K_D=K_D, clik_max_error=0.1, points=points, settle=SETTLE,
         rest=REST, n_thin=thin_count(n, points), n_envelope=envelope_count(n, points),
         out_at=[getattr(outputs.offsets, name) for name in ARRAYS])
-    return np.concatenate([header, x.ravel(), xd.ravel(), xdd.ravel()])
+    data = np.concatenate([header, x.ravel(), xd.ravel(), xdd.ravel(), np.zeros(12 * n)])
+    fill_joint_reference(data, np.zeros(SCALARS.size))
+    return data
 
 
 #: a stand-in for a number field written into a text field (replaced once the text is in)

@@ -35,6 +35,7 @@ function enc(v) {
   if (typeof v === 'number') return {num: String(v)};
   if (typeof v === 'boolean') return {num: v ? '1' : '0'};
   if (Array.isArray(v)) return v.map(enc);
+  if (v && typeof v === 'object' && typeof v.length === 'number') return Array.from(v).map(enc);  // a namedtuple
   if (v === undefined) return null;
   return v;
 }

@@ -183,9 +183,14 @@ def test_the_layouts_and_data_are_those_the_kernel_reads(short):
     data = pc.control_data(short, points=POINTS)
     outputs = pc.control_outputs(n, POINTS)
     h = pc.HEADER.offsets
-    assert data.size == pc.HEADER.size + 12 * n
+    assert data.size == pc.HEADER.size + 24 * n
     for name, at in (("x", h.x_at), ("xd", h.xd_at), ("xdd", h.xdd_at)):
         np.testing.assert_array_equal(data[int(data[at]):int(data[at]) + 4 * n].reshape(n, 4), getattr(short, name))
+    # the joint reference, computed once with the data: scara.clik2 of the trajectory, to the last bit
+    jref, at = clik2(short), int(data[h.jref_at])
+    assert data[h.jref_code] == 0
+    for k, name in enumerate(("q", "qd", "qdd")):
+        np.testing.assert_array_equal(data[at + 4 * n * k:at + 4 * n * (k + 1)].reshape(n, 4), getattr(jref, name))
     for k, name in enumerate(pc.ARRAYS):
         assert int(data[h.out_at + k]) == getattr(outputs.offsets, name)
     assert outputs.sizes["err_t"] == pc.envelope_count(n, POINTS) and outputs.sizes["t"] == pc.thin_count(n, POINTS)

@@ -180,3 +180,19 @@ def test_python_integer_semantics():
     got = run_js(js, [("_python_semantics", [a, b], 1) for a, b in pairs])
     for (a, b), (ret, _, _) in zip(pairs, got):
         assert np.allclose(ret, _python_semantics(a, b), rtol=0, atol=0), (a, b, ret)
+
+
+def _copies(a, b):
+    c = a.copy()      # a copy, not a view: writing it leaves a alone
+    c[0] = -1.0
+    d = b.copy()
+    d[1, 0] = 7.0
+    return c[0] + a[0] + d.shape[1] + d[1, 0] + b[1, 0]
+
+
+def test_copies_are_copies_with_their_shape():
+    a, b = np.array([2.0, 3.0]), np.arange(6.0).reshape(3, 2)
+    (ret, (a_after, b_after), _), = run_js(translate([_copies]), [("_copies", [a, b], 1)])
+    assert ret == _copies(a.copy(), b.copy()) == -1.0 + 2.0 + 2 + 7.0 + 2.0
+    np.testing.assert_array_equal(a_after, a)
+    np.testing.assert_array_equal(b_after, b)
