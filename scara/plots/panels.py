@@ -334,6 +334,11 @@ class PageProgram:
     starts from) names in ``carry = (field, offset)`` an output written into ``data`` at ``offset`` after every
     accepted move, and in ``react`` the controls a change sets from the data: ``{control: {other control:
     Pick}}`` (pick a waypoint, its sliders show its values). Both front ends do both, from these declarations.
+
+    ``drag = {"figure": role, "pick": control, "x": control, "y": control}`` lets the page's reader drag, on
+    the figure of that role, the points ``pick`` chooses among (their positions read from the data by the
+    ``react`` picks of ``pick`` for ``x`` and ``y``): dragging one picks it and sets ``x`` and ``y`` to the
+    pointer's place, rounded to the sliders' steps, one move per pointer move. Only the page does this.
     """
 
     kernel: Callable
@@ -350,8 +355,19 @@ class PageProgram:
     compact: Any = None
     carry: tuple | None = None
     react: dict = None
+    drag: dict | None = None
 
     def __post_init__(self):
+        if self.drag is not None:
+            if set(self.drag) != {"figure", "pick", "x", "y"}:
+                raise ScaraError(f"drag must name figure, pick, x and y; got {sorted(self.drag)}")
+            picks = (self.react or {}).get(self.drag["pick"], {})
+            missing = [k for k in ("x", "y") if self.drag[k] not in picks]
+            if missing:
+                raise ScaraError(f"drag: the points picked by {self.drag['pick']!r} have no react pick for "
+                                 f"{[self.drag[k] for k in missing]}, so their positions cannot be read")
+            if self.drag["figure"] not in self.traces:
+                raise ScaraError(f"drag: no figure {self.drag['figure']!r}; the program draws {sorted(self.traces)}")
         if self.carry is not None and self.prepare is not None:
             raise ScaraError("a program with a prepared data cannot carry an output into it")
         object.__setattr__(self, "react", dict(self.react or {}))
@@ -509,6 +525,7 @@ class PageProgram:
             prepare=None if self.prepare is None else getattr(self.prepare, "__name__", str(self.prepare)),
             data_size=int(self.data.size),
             carry=None if self.carry is None else dict(field=self.carry[0], offset=int(self.carry[1])),
+            drag=None if self.drag is None else dict(self.drag),
             react={name: {target: dict(offset=int(k.offset), stride=int(k.stride), index=k.index, as_=k.as_)
                           for target, k in picks.items()} for name, picks in self.react.items()},
             outputs=[dict(name=n, offset=o, size=self.outputs.sizes[n])

@@ -138,7 +138,8 @@ class EditorState:
             data=program.editor_data(plan_spec(self.plan), TOP_POINTS, PROFILE_POINTS),
             outputs=program.editor_outputs(n, TOP_POINTS, PROFILE_POINTS), refusals=editor_refusals(),
             **editor_bindings(n, self.profiles), rows=_rows(labels), notes=_NOTES,
-            carry=("spec_out", program.D_SPEC), react=react)
+            carry=("spec_out", program.D_SPEC), react=react,
+            drag={"figure": "top view", "pick": "point", "x": "x", "y": "y"})  # the page's reader drags a waypoint
         builders, roles = editor_pairs(editor_labels(traj), n, self.profiles)
         panel = program_panel("waypoint editor", "Waypoint editor: edit the path, watch it re-planned", controls,
                               prog, builders, widget="waypoint_editor", roles=roles)

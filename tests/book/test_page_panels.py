@@ -109,7 +109,13 @@ def _jupyter_panel(spec):
 
         prog = replace(decl.page, data=data)
         by_name = {c.name: c for c in decl.controls}
-        decl = replace(decl, page=prog, compute=lambda s, prog=prog: prog.run(s, by_name),
+
+        def compute(settings, prog=prog):  # as program_panel's: a carrying panel's accepted move carries
+            values = prog.run(settings, by_name)
+            prog.carried(values)
+            return values
+
+        decl = replace(decl, page=prog, compute=compute, react=prog.reacted if prog.react else decl.react,
                        figures=tuple(replace(f, update=(lambda v, role=f.role, prog=prog: prog.update(role, v)))
                                      for f in decl.figures))
         from scara.widgets._common import LivePanel
@@ -303,5 +309,94 @@ def test_address_keeps_a_setting_and_reset_returns(server, browser):
         pg.wait_for_timeout(300)
         assert _seq(pg, name) - seq < 41, "every move was drawn: they did not collapse"
         assert not errors, errors
+    finally:
+        ctx.close()
+
+
+def test_a_waypoint_dragged_on_the_top_view_is_the_jupyter_editors_edit(server, browser):
+    """In the page's waypoint editor the reader drags a waypoint on the top view with the pointer: it is picked, its
+    x and y follow the pointer (on the sliders' steps), the path is re-planned on the way, and the figures equal
+    the Jupyter editor's for the waypoint so picked and moved. Plotly's zoom does not start."""
+    page = next((p for p, names in _pages().items() if "waypoint_editor" in names), None)
+    if page is None:
+        pytest.fail("the built book holds no waypoint editor")
+    name = "waypoint_editor"
+    ctx, pg, errors, outside = _open(browser, server, page)
+    try:
+        spec = _spec(pg, name)
+        _wait_seq(pg, name, 0)
+        by_name = {c["name"]: c for c in spec["controls"]}
+        sel = f'[data-scara-panel="{name}"] .scara-panel-figure .js-plotly-plot'
+        pg.locator(sel).first.scroll_into_view_if_needed()
+        # a waypoint other than the one the panel opens at, and where it is on the screen
+        points = pg.evaluate("""([sel, name]) => {
+          const gd = document.querySelector(sel), fl = gd._fullLayout, r = gd.getBoundingClientRect();
+          const p = document.querySelector(`[data-scara-panel="${name}"]`).__scaraPanel, d = p.prog.drag;
+          const rx = p.prog.react[d.pick][d.x], ry = p.prog.react[d.pick][d.y];
+          return p.spec.controls.find(c => c.name === d.pick).options.map(([, i]) => {
+            const x = p.data[rx.offset + rx.stride * i], y = p.data[ry.offset + ry.stride * i];
+            return {i, x, y, px: r.left + fl.xaxis.l2p(x) + fl.xaxis._offset, py: r.top + fl.yaxis.l2p(y) + fl.yaxis._offset,
+                    left: r.left + fl.xaxis._offset, top: r.top + fl.yaxis._offset, w: fl.xaxis._length, h: fl.yaxis._length};
+          });
+        }""", [sel, name])
+        start = spec["values"]["point"]
+        target = next(p for p in points if p["i"] != start and
+                      all(math.hypot(p["px"] - q["px"], p["py"] - q["py"]) > 20 for q in points if q is not p))
+        ranges = [pg.evaluate(f"() => document.querySelector('{sel}')._fullLayout.{a}axis.range.slice()")
+                  for a in "xy"]
+        seq = _seq(pg, name)
+        pg.mouse.move(target["px"], target["py"])
+        pg.mouse.down()
+        to = (target["px"] + 0.06 * target["w"], target["py"] - 0.05 * target["h"])
+        for k in range(1, 6):
+            pg.mouse.move(target["px"] + (to[0] - target["px"]) * k / 5, target["py"] + (to[1] - target["py"]) * k / 5)
+            pg.wait_for_timeout(60)
+        pg.mouse.up()
+        # the drop's place in the axes' units, on the sliders' steps
+        want = {}
+        for axis, key, pix, lo, size in (("x", "x", to[0], target["left"], target["w"]),
+                                         ("y", "y", to[1], target["top"], target["h"])):
+            r = ranges["xy".index(axis)]
+            frac = (pix - lo) / size if axis == "x" else 1 - (pix - lo) / size
+            step = by_name[key]["step"]
+            want[key] = float(f"{round((r[0] + frac * (r[1] - r[0])) / step) * step:.12g}")
+        _wait_seq(pg, name, seq)
+        pg.wait_for_function("""([name, i]) => { const e = document.querySelector(`[data-scara-panel="${name}"] .scara-panel-values`);
+          const v = JSON.parse(e.textContent).values; return v.point === i; }""", arg=[name, target["i"]], timeout=30000)
+        pg.wait_for_timeout(800)  # the last pointer move's redraw
+        st = _state(pg, name)
+        got = st["values"]["values"]
+        assert got["point"] == target["i"] and not st["stale"], (got, st["message"])
+        for key in ("x", "y"):   # within a step of the pointer's place (a pixel is smaller than a step)
+            assert abs(got[key] - want[key]) <= by_name[key]["step"] + 1e-12, (key, got[key], want[key])
+            assert got[key] != pytest.approx(target[key], abs=1e-9), "the waypoint did not move"
+        assert pg.evaluate(f"() => document.querySelector('{sel}')._fullLayout.xaxis.range.slice()") == ranges[0], \
+            "plotly zoomed instead of the waypoint moving"
+        panel = _jupyter_panel(spec)
+        for key in ("point", "x", "y"):   # the same edit made with the Jupyter editor's controls
+            panel.controls[key].value = got[key]
+        assert panel.last_error is None and st["values"]["values"] == json.loads(json.dumps(panel.values()))
+        _compare(st, panel, spec)
+        pg.screenshot(path=str(SHOTS / "page_panel_waypoint_dragged.png"), full_page=False)
+        # a second edit on another waypoint (the first stays in the plan), then a reload of the address: the
+        # page replays both edits and draws the same figures, the same settings
+        other = next(p for p in points if p["i"] not in (target["i"], start))
+        for key, value in (("point", other["i"]), ("z", float(f"{other['i'] * 0.01 + 0.3:.4g}"))):
+            seq = _seq(pg, name)
+            _set(pg, name, key, value, by_name[key])
+            _wait_seq(pg, name, seq)
+            panel.controls[key].value = value
+        _wait_values(pg, name, json.loads(json.dumps(panel.values())))
+        before = _state(pg, name)
+        assert not before["stale"], before["message"]
+        _compare(before, panel, spec)
+        assert f"{name}.edits=" in pg.url, pg.url
+        pg.reload(wait_until="load")
+        settle(pg)
+        _wait_values(pg, name, before["values"]["values"])
+        after = _state(pg, name)
+        assert after["figures"] == before["figures"], "a reload did not replay the edits"
+        assert not errors, errors
+        assert not outside, outside
     finally:
         ctx.close()

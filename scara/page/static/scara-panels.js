@@ -202,11 +202,33 @@
       this.values = Object.assign({}, spec.values);
       this.defaults = Object.assign({}, spec.values);
       this.data = float64(this.prog.data);  // the panel's data; a carry updates it after a move
+      this.history = [];  // a carrying panel's accepted edits, one per stretch of the same picks (the address)
       this.build();
       const saved = readAddress()[this.name];
       if (saved) this.load(saved);
       this.send();
-      this.schedule(performance.now());
+      const replay = saved && this.prog.carry && saved.edits ? this.edits(saved.edits) : [];
+      if (replay.length) this.run({t0: performance.now(), move: 0, replay});  // the earlier edits first, undrawn
+      else this.schedule(performance.now());
+    }
+
+    stretch(values) {  // the picks (PageProgram.react's controls) a carrying panel's edit was made at
+      return Object.keys(this.prog.react || {}).map((n) => JSON.stringify(values[n])).join("|");
+    }
+
+    edits(text) {  // the address's earlier edits of a carrying panel: settings, each as LivePanel.values() gives them
+      return text.split(";").filter((e) => e).map((e) => {
+        const v = Object.assign({}, this.defaults);
+        for (const kv of e.split(",")) {
+          const i = kv.indexOf(":"), c = this.spec.controls.find((x) => x.name === kv.slice(0, i));
+          if (!c) continue;
+          const raw = kv.slice(i + 1);
+          if (c.kind === "dropdown") { const o = c.options.find(([, x]) => String(x) === raw); if (o) v[c.name] = o[1]; }
+          else if (c.kind === "toggle") v[c.name] = raw === "true";
+          else if (Number.isFinite(Number(raw))) v[c.name] = Number(raw);
+        }
+        return v;
+      });
     }
 
     send() {  // the data to the engine (prepared there from its compact form when the program has a prepare)
@@ -268,7 +290,79 @@
       this.notes = el("div", {class: "scara-panel-note"}, root);
       this.info = el("div", {class: "scara-panel-info"}, root);
       this.valuesEl = el("span", {class: "scara-panel-values", hidden: ""}, root);
+      if (this.prog.drag) this.draggable(this.figures.find((f) => f.spec.role === this.prog.drag.figure));
       this.grey();
+    }
+
+    draggable(f) {  // PageProgram.drag: the reader drags a point of this figure; each pointer move is a move
+      const d = this.prog.drag, gd = f.gd, by = (n) => this.spec.controls.find((c) => c.name === n);
+      const caption = f.box.querySelector("figcaption");
+      caption.textContent += " Drag one of its points (mouse or finger) to move it: its controls follow.";
+      const pick = by(d.pick), cx = by(d.x), cy = by(d.y), rx = this.prog.react[d.pick][d.x], ry = this.prog.react[d.pick][d.y];
+      const axes = () => { const fl = gd._fullLayout; return fl && fl.xaxis && fl.yaxis ? [fl.xaxis, fl.yaxis] : null; };
+      const local = (ev) => { const r = gd.getBoundingClientRect(); return [ev.clientX - r.left, ev.clientY - r.top]; };
+      const nearest = (ev) => {  // the point under the pointer (within 14 px; 24 for a finger), by its index
+        const a = axes();
+        if (!a || this.inputs[d.pick].disabled) return -1;
+        const [px, py] = local(ev), reach = ev.pointerType === "touch" ? 24 : 14;
+        let best = -1, dist = reach;
+        pick.options.forEach(([, i]) => {
+          const current = JSON.stringify(this.values[d.pick]) === JSON.stringify(i);
+          const x = current ? this.values[d.x] : this.data[rx.offset + rx.stride * i];
+          const y = current ? this.values[d.y] : this.data[ry.offset + ry.stride * i];
+          const dx = a[0].l2p(x) + a[0]._offset - px, dy = a[1].l2p(y) + a[1]._offset - py, r = Math.hypot(dx, dy);
+          if (r < dist) { dist = r; best = i; }
+        });
+        return best;
+      };
+      const place = (ev) => {  // the pointer's place in the axes' units, on the sliders' steps
+        const a = axes(), [px, py] = local(ev);
+        const round = (v, c) => Number((Math.round(v / c.step) * c.step).toPrecision(12));
+        return [[cx, round(a[0].p2l(px - a[0]._offset), cx)], [cy, round(a[1].p2l(py - a[1]._offset), cy)]];
+      };
+      let held = null;
+      gd.addEventListener("pointerdown", (ev) => {
+        const i = nearest(ev);
+        if (i < 0) return;
+        ev.preventDefault();
+        ev.stopPropagation();  // not plotly's zoom box
+        held = ev.pointerId;
+        gd.setPointerCapture(ev.pointerId);
+        if (JSON.stringify(this.values[d.pick]) !== JSON.stringify(i)) {
+          this.show(pick, i);
+          this.changed(pick, this.inputs[d.pick]);  // picking it loads its values (react), one move
+        }
+      }, true);
+      gd.addEventListener("pointermove", (ev) => {
+        if (held === ev.pointerId) { ev.preventDefault(); ev.stopPropagation(); this.setMany(place(ev)); return; }
+        const drag = gd.querySelector(".nsewdrag");
+        if (drag) drag.style.cursor = nearest(ev) >= 0 ? "grab" : "";
+      }, true);
+      const release = (ev) => { if (held === ev.pointerId) { held = null; ev.stopPropagation(); } };
+      gd.addEventListener("pointerup", release, true);
+      gd.addEventListener("pointercancel", release, true);
+      for (const type of ["mousedown", "touchstart"]) {  // plotly's own drag starts on these: not on a point held
+        gd.addEventListener(type, (ev) => { if (held !== null) { ev.stopPropagation(); if (ev.cancelable) ev.preventDefault(); } },
+                            {capture: true, passive: false});
+      }
+    }
+
+    setMany(pairs) {  // several controls set together (a drag): one move, or the refusal of a value outside its range
+      this.move = (this.move || 0) + 1;
+      for (const [c, value] of pairs) {
+        const input = this.inputs[c.name];
+        input.value = String(value);
+        const v = this.read(c, input);
+        if (v instanceof Error) {
+          this.values[c.name] = input.value;
+          this.refusedAt = this.move;
+          this.refuse(v.message);
+          return;
+        }
+        this.values[c.name] = v;
+        if (this.ranges[c.name]) this.ranges[c.name].value = String(c.scale === "log" ? Math.log10(v) : v);
+      }
+      this.schedule(performance.now());
     }
 
     control(grid, c) {
@@ -363,16 +457,16 @@
       this.move = (this.move || 0) + 1;
       for (const c of this.spec.controls) this.show(c, this.defaults[c.name]);
       this.values = Object.assign({}, this.defaults);
-      if (this.prog.carry) { this.data = float64(this.prog.data); this.send(); }
+      if (this.prog.carry) { this.data = float64(this.prog.data); this.history = []; this.send(); }
       this.grey();
       writeAddress(this.name, null);
       this.schedule(performance.now());
     }
 
-    pack() {
+    pack(values) {
       const by = Object.fromEntries(this.spec.controls.map((c) => [c.name, c]));
       return this.prog.inputs.map((i) => {
-        const c = by[i.name], v = this.values[i.name];
+        const c = by[i.name], v = values[i.name];
         if (c.kind === "dropdown") return c.options.findIndex(([, x]) => JSON.stringify(x) === JSON.stringify(v));
         if (c.kind === "toggle") return v ? 1 : 0;
         return Number(v);
@@ -388,8 +482,9 @@
     run(job) {  // the engine computes one move at a time; the page draws the last result meanwhile
       this.busy = true;
       const id = nextId++;
-      job.values = Object.assign({}, this.values);  // what this run computes: the latest settings
-      const inputs = this.pack();
+      // what this run computes: the latest settings, or an earlier edit the address replays
+      job.values = job.replay ? job.replay[0] : Object.assign({}, this.values);
+      const inputs = this.pack(job.values);
       waiting[id] = (m) => this.done(job, m);
       engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
     }
@@ -424,6 +519,14 @@
         const c = this.prog.carry, f = this.prog.outputs.find((x) => x.name === c.field);
         this.data.set(m.out.subarray(f.offset, f.offset + f.size), c.offset);
         this.send();
+        const at = this.stretch(job.values), last = this.history[this.history.length - 1];
+        if (last && last.at === at) last.values = job.values; else this.history.push({at, values: job.values});
+      }
+      if (job.replay) {  // the address's edits, one after the other, then the settings it shows
+        this.busy = false;
+        if (job.replay.length > 1) this.run({t0: job.t0, move: 0, replay: job.replay.slice(1)});
+        else this.schedule(job.t0);
+        return;
       }
       this.next();  // a move made meanwhile starts computing now, while this one is drawn
       if (job.move < (this.refusedAt || 0)) return;  // a later setting was refused: this result is not current
@@ -485,6 +588,11 @@
         const v = this.values[c.name];
         if (JSON.stringify(v) !== JSON.stringify(this.defaults[c.name])) changed[c.name] = String(v);
       }
+      // a carrying panel's edits build on each other: the earlier stretches too, replayed in order on a reload
+      const earlier = this.history.slice(0, -1).map((h) => this.spec.controls
+        .filter((c) => JSON.stringify(h.values[c.name]) !== JSON.stringify(this.defaults[c.name]))
+        .map((c) => c.name + ":" + String(h.values[c.name])).join(","));
+      if (earlier.length) changed.edits = earlier.join(";");
       writeAddress(this.name, changed);
     }
 
