@@ -111,6 +111,78 @@ def failure_message(status: int, controller: str, **text) -> str:
     return fill_text(FAILURE_MESSAGES.get(status, FAILURE_MESSAGES[LAW_FAILED]), controller=controller, **text)
 
 
+@_compile.kernel(inline="always")
+def _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig):
+    """The start of sample ``k`` of the engine's loop: the measured state recorded in row ``k`` of ``q_out``,
+    ``qd_out`` and copied to the law's own ``q_law``, ``qd_law``; ``tau`` and the signals ``sig`` zeroed."""
+    for i in range(4):
+        q_out[k, i] = q[i]
+        qd_out[k, i] = qd[i]
+        q_law[i] = q[i]
+        qd_law[i] = qd[i]
+        tau[i] = 0.0
+    for i in range(sig.shape[0]):
+        sig[i] = 0.0
+
+
+@_compile.kernel(inline="always")
+def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out, qd_out,
+               qdd_out, tau_out, sig_out, info):
+    """The rest of sample ``k`` of ``n`` after the law returned ``code``: its torque and signals recorded, the
+    checks of the engine (the law's code, the torque's bound, the state's, the quill's stroke), the plant's RK4
+    steps with the torque held (``substeps`` of ``h``; the acceleration just after the update in row ``k`` of
+    ``qdd_out``). Returns True when the run stops here, ``info`` saying why (see :func:`closed_loop_kernel`)."""
+    n_sig = sig.shape[0]
+    for i in range(4):
+        tau_out[k, i] = tau[i]
+    for i in range(n_sig):
+        sig_out[k, i] = sig[i]
+    if code != OK:
+        info[0] = LAW_FAILED
+        info[1] = k
+        info[2] = code
+        return True
+    ok = True
+    for i in range(4):
+        if not abs(tau[i]) < limit:  # also catches NaN
+            ok = False
+    if not ok:
+        _torque_failure(tau, k, info)
+        return True
+    if k == n - 1:
+        a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
+                                   (tau[0], tau[1], tau[2], tau[3]), pc)
+        if c != OK:
+            info[0] = SINGULAR_INERTIA
+            info[1] = k
+        else:
+            for i in range(4):
+                qdd_out[k, i] = a[i]
+        return True
+    for s in range(substeps):
+        if _rk4_step(q, qd, (tau[0], tau[1], tau[2], tau[3]), pc, h, qdd if s == 0 else spare) != OK:
+            info[0] = SINGULAR_INERTIA
+            info[1] = k
+            return True
+    for i in range(4):
+        qdd_out[k, i] = qdd[i]
+    for i in range(4):
+        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
+            ok = False
+    if not ok:
+        info[0] = DIVERGED
+        info[1] = k + 1
+        return True
+    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
+        for i in range(4):
+            q_out[k + 1, i] = q[i]
+            qd_out[k + 1, i] = qd[i]
+        info[0] = JOINT_LIMIT
+        info[1] = k + 1
+        return True
+    return False
+
+
 @_compile.signature_kernel(_LOOP_SIGNATURE)
 def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     """The engine's loop over ``N = ref.shape[0]`` samples (see the package's docstring).
@@ -153,63 +225,12 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     info[1] = n
     info[2] = 0
     for k in range(n):
-        for i in range(4):
-            q_out[k, i] = q[i]
-            qd_out[k, i] = qd[i]
-            q_law[i] = q[i]
-            qd_law[i] = qd[i]
-            tau[i] = 0.0
+        _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         for i in range(n_ref):
             r[i] = ref[k, i]
-        for i in range(n_sig):
-            sig[i] = 0.0
         code = law(k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
-        for i in range(4):
-            tau_out[k, i] = tau[i]
-        for i in range(n_sig):
-            sig_out[k, i] = sig[i]
-        if code != OK:
-            info[0] = LAW_FAILED
-            info[1] = k
-            info[2] = code
-            return
-        ok = True
-        for i in range(4):
-            if not abs(tau[i]) < limit:  # also catches NaN
-                ok = False
-        if not ok:
-            _torque_failure(tau, k, info)
-            return
-        if k == n - 1:
-            a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
-                                       (tau[0], tau[1], tau[2], tau[3]), pc)
-            if c != OK:
-                info[0] = SINGULAR_INERTIA
-                info[1] = k
-            else:
-                for i in range(4):
-                    qdd_out[k, i] = a[i]
-            return
-        for s in range(substeps):
-            if _rk4_step(q, qd, (tau[0], tau[1], tau[2], tau[3]), pc, h, qdd if s == 0 else spare) != OK:
-                info[0] = SINGULAR_INERTIA
-                info[1] = k
-                return
-        for i in range(4):
-            qdd_out[k, i] = qdd[i]
-        for i in range(4):
-            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-                ok = False
-        if not ok:
-            info[0] = DIVERGED
-            info[1] = k + 1
-            return
-        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-            for i in range(4):
-                q_out[k + 1, i] = q[i]
-                qd_out[k + 1, i] = qd[i]
-            info[0] = JOINT_LIMIT
-            info[1] = k + 1
+        if _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out,
+                      qd_out, qdd_out, tau_out, sig_out, info):
             return
 
 

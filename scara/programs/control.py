@@ -31,11 +31,11 @@ from .._clik.records import (COMPONENTS, SEED_K, STATUS_DONE, STATUS_ERROR_BOUND
                              Reference, SecondOrderLaw)
 from .._clik.records import Series as ClikSeries
 from .._compile import ArrayLayout, kernel
-from .._simulate.engine import _torque_failure, failure_cause, failure_message, first_bad_signal
+from .._simulate.engine import _after_law, _before_law, failure_cause, failure_message, first_bad_signal
 from .._simulate.interface import (DIVERGED, GUARD, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, READS_PAST,
                                    READS_PAST_ANY, SINGULAR_INERTIA, WRITES_PAST, _FILLS, _TRIAL_ARRAYS, described,
                                    fill_text, guard_change, same_entries)
-from .._simulate.plant import _plant_acceleration, _plant_constants, _rk4_step
+from .._simulate.plant import _plant_constants
 from .._simulate.result import _pose_error
 from .._simulate.setpoints import START_STROKE_MESSAGE, in_stroke
 from ..trajectory._plan import sample_plan
@@ -481,9 +481,11 @@ def _law_step(law, k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
 @kernel
 def _closed_loop(law, q0, qd0, ref_pos, ref_vel, ref_acc, dt, substeps, limit, d3_mid, d3_half, plant_dp, gains, model,
                  state, work, q_out, qd_out, qdd_out, tau_out, sig_out, info):
-    """The engine's loop (:func:`scara._simulate.engine.closed_loop_kernel`, step for step: the same kernels, the
-    same checks, the same records) with the law of index ``law`` (:func:`_law_step`) and the reference rows read
-    from ``ref_pos``, ``ref_vel``, ``ref_acc`` (N, 4) each. ``info`` (3,) receives ``[code, k, law_code]``."""
+    """The engine's loop (:func:`scara._simulate.engine.closed_loop_kernel`: the same steps, its own kernels
+    :func:`~scara._simulate.engine._before_law` and :func:`~scara._simulate.engine._after_law` around the law) with
+    the law of index ``law`` (:func:`_law_step`, not a law passed as a function, which the page's engine cannot
+    take) and the reference rows read from ``ref_pos``, ``ref_vel``, ``ref_acc`` (N, 4) each. ``info`` (3,)
+    receives ``[code, k, law_code]``."""
     n = ref_pos.shape[0]
     n_sig = sig_out.shape[1]
     pc = _plant_constants(plant_dp)
@@ -504,65 +506,14 @@ def _closed_loop(law, q0, qd0, ref_pos, ref_vel, ref_acc, dt, substeps, limit, d
     info[1] = n
     info[2] = 0
     for k in range(n):
-        for i in range(4):
-            q_out[k, i] = q[i]
-            qd_out[k, i] = qd[i]
-            q_law[i] = q[i]
-            qd_law[i] = qd[i]
-            tau[i] = 0.0
+        _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         for i in range(4):
             r[i] = ref_pos[k, i]
             r[4 + i] = ref_vel[k, i]
             r[8 + i] = ref_acc[k, i]
-        for i in range(n_sig):
-            sig[i] = 0.0
         code = _law_step(law, k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
-        for i in range(4):
-            tau_out[k, i] = tau[i]
-        for i in range(n_sig):
-            sig_out[k, i] = sig[i]
-        if code != OK:
-            info[0] = LAW_FAILED
-            info[1] = k
-            info[2] = code
-            return
-        ok = True
-        for i in range(4):
-            if not abs(tau[i]) < limit:  # also catches NaN
-                ok = False
-        if not ok:
-            _torque_failure(tau, k, info)
-            return
-        if k == n - 1:
-            a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
-                                       (tau[0], tau[1], tau[2], tau[3]), pc)
-            if c != OK:
-                info[0] = SINGULAR_INERTIA
-                info[1] = k
-            else:
-                for i in range(4):
-                    qdd_out[k, i] = a[i]
-            return
-        for s in range(substeps):
-            if _rk4_step(q, qd, (tau[0], tau[1], tau[2], tau[3]), pc, h, qdd if s == 0 else spare) != OK:
-                info[0] = SINGULAR_INERTIA
-                info[1] = k
-                return
-        for i in range(4):
-            qdd_out[k, i] = qdd[i]
-        for i in range(4):
-            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-                ok = False
-        if not ok:
-            info[0] = DIVERGED
-            info[1] = k + 1
-            return
-        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-            for i in range(4):
-                q_out[k + 1, i] = q[i]
-                qd_out[k + 1, i] = qd[i]
-            info[0] = JOINT_LIMIT
-            info[1] = k + 1
+        if _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out,
+                      qd_out, qdd_out, tau_out, sig_out, info):
             return
 
 
