@@ -46,8 +46,8 @@ DASHES = ("solid", "dash", "dot", "dashdot")
 JOINT_NAMES = ("θ1", "θ2", "d3", "θ4")
 #: generalised-force unit of each joint
 JOINT_UNITS = ("N m", "N m", "N", "N m")
-#: log axes: values below this (exact zeros) are drawn at the floor
-LOG_FLOOR = 1e-12
+#: log axes: values below this (exact zeros) are drawn at the floor (the page programs' own, one number)
+from ..programs.thinning import LOG_FLOOR  # noqa: E402
 
 #: legend names of the CLIK methods of chapter 4 (keys: ``ClikResult.method``, also keys of ``PALETTE``)
 METHOD_LABELS = {

@@ -33,6 +33,7 @@ from .._clik.records import (COMPONENTS, METHOD_INVERSE, METHOD_PSEUDOINVERSE, M
 from .._compile import ArrayLayout, kernel
 from ..kinematics import Geometry
 from ..trajectory._plan import sample_plan
+from .thinning import LOG_FLOOR, envelope_kernel, envelope_length, thin_kernel, thin_length  # noqa: F401
 
 __all__ = ["PANEL_METHODS", "INPUTS", "HEADER", "SCALARS", "clik_program", "clik_core", "clik_data",
            "clik_outputs", "clik_start", "refusal_templates", "envelope_kernel", "thin_kernel", "envelope_length",
@@ -57,8 +58,6 @@ MAX_ERROR = 0.1
 SETTLE = 0.1
 #: a largest position error above this (m) is flagged in the panel's notes
 STRAY = 1e-3
-#: log axes: values below this are drawn at the floor (``scara.plots._common.LOG_FLOOR``)
-LOG_FLOOR = 1e-12
 
 #: the header of ``data``: sizes, the arm, the start and the offsets (in ``data`` or in ``out``) of the arrays
 HEADER = ArrayLayout(("n", 1), ("dt", 1), ("points", 1), ("a1", 1), ("a2", 1), ("d0", 1), ("r_max", 1),
@@ -100,91 +99,6 @@ R_DAMPING = 50
 R_SINGULAR_START = 51
 R_SHORT = 52
 R_DIVERGED = 60
-
-
-# --------------------------------------------------------------------------------------------------
-# thinning a long run for plotting (the arithmetic of scara.plots._common.envelope and thin)
-# --------------------------------------------------------------------------------------------------
-@kernel
-def envelope_length(n, points):
-    """The number of samples :func:`envelope_kernel` gives for ``n`` samples thinned to about ``points``."""
-    if n <= points:
-        return n
-    size = int(math.ceil(n / points))
-    m = n // size
-    return m + 1 if m * size < n else m
-
-
-@kernel
-def thin_length(n, points):
-    """The number of samples :func:`thin_kernel` gives: ``min(n, points)`` (the rounded, evenly spaced indices
-    of more samples than points never repeat, as they are more than one apart)."""
-    return n if n <= points else points
-
-
-@kernel
-def envelope_kernel(t, y, points, tt, yy):
-    """The upper envelope of ``|y|`` (N,) over ``ceil(N / points)``-sample blocks, written into ``tt`` and ``yy``
-    (their first :func:`envelope_length` entries, returned): each block's largest value, floored at
-    :data:`LOG_FLOOR` for a log axis, at the middle of the block (the last, shorter block at ``t[-1]``), so that
-    thinning a long run loses no peak. With ``N <= points``, ``|y|`` itself."""
-    n = t.shape[0]
-    if n <= points:
-        for k in range(n):
-            tt[k] = t[k]
-            yy[k] = max(abs(y[k]), LOG_FLOOR)
-        return n
-    size = int(math.ceil(n / points))
-    m = n // size
-    half = 0.5 * size * (t[1] - t[0])
-    for j in range(m):
-        top = abs(y[j * size])
-        for k in range(j * size + 1, (j + 1) * size):
-            v = abs(y[k])
-            if v > top:
-                top = v
-        tt[j] = t[j * size] + half
-        yy[j] = max(top, LOG_FLOOR)
-    if m * size < n:
-        top = abs(y[m * size])
-        for k in range(m * size + 1, n):
-            v = abs(y[k])
-            if v > top:
-                top = v
-        tt[m] = t[n - 1]
-        yy[m] = max(top, LOG_FLOOR)
-        return m + 1
-    return m
-
-
-@kernel
-def _round_half_even(x):
-    """``x >= 0`` rounded to the nearest whole number, a half to the even one (numpy's ``round``)."""
-    r = math.floor(x)
-    d = x - r
-    k = int(r)
-    if d > 0.5 or (d == 0.5 and k % 2 == 1):
-        k += 1
-    return k
-
-
-@kernel
-def thin_kernel(t, y, points, tt, yy):
-    """``t`` and ``y`` (N,) at about ``points`` evenly spaced samples, first and last included (indices
-    ``round(i (N - 1) / (points - 1))``), written into ``tt`` and ``yy``; returns their number
-    (:func:`thin_length`)."""
-    n = t.shape[0]
-    if n <= points:
-        for k in range(n):
-            tt[k] = t[k]
-            yy[k] = y[k]
-        return n
-    step = (n - 1.0) / (points - 1)
-    for i in range(points):
-        k = n - 1 if i == points - 1 else _round_half_even(i * step)
-        tt[i] = t[k]
-        yy[i] = y[k]
-    return points
 
 
 # --------------------------------------------------------------------------------------------------

@@ -39,6 +39,7 @@ from .._simulate.plant import _plant_constants
 from .._simulate.result import _pose_error
 from .._simulate.setpoints import START_STROKE_MESSAGE, in_stroke
 from ..trajectory._plan import sample_plan
+from .thinning import LOG_FLOOR, envelope_kernel, envelope_length, thin_index, thin_length
 from ..control._common import FAILURE_CAUSES, MAX_ERROR, TAU_MAX, BoundedController
 from ..control.adaptive import FROZEN, SMALL_WEIGHT_MESSAGE, AdaptiveController, adaptation_rates, adaptive_law
 from ..control.adaptive import pack_gains as _adaptive_gains
@@ -57,7 +58,7 @@ from ..kinematics import planar_jacobian, planar_trig
 from ..params import ScaraParams
 
 __all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "control_program", "control_core", "control_data",
-           "control_outputs", "control_refusals", "thin_count", "thin_index", "envelope_count"]
+           "control_outputs", "control_refusals", "thin_length", "thin_index", "envelope_length"]
 
 # --------------------------------------------------------------------------------------------------
 # the panel's controls, the laws, the layouts of the data and of the outputs
@@ -131,9 +132,6 @@ _SCALARS_SIZE = SCALARS.size
 #: The flag of each law's error trace (``robust_shown`` ...), in the order of :data:`LAWS`
 SHOWN = tuple(f"{name}_shown" for name in LAWS)
 
-#: A log axis's floor (the envelope of :func:`scara.plots._common.envelope`: exact zeros drawn there)
-LOG_FLOOR = 1e-12
-
 # --------------------------------------------------------------------------------------------------
 # the refusal codes (:func:`control_refusals` words each)
 # --------------------------------------------------------------------------------------------------
@@ -149,82 +147,6 @@ _R_TRIAL = 100                # + 20 law + 2 array + (0 writes past, 1 reads pas
 _R_RUN = 1000                 # + 100 law + cause (below)
 _C_LAW, _C_LAW_OTHER, _C_DIVERGED, _C_SINGULAR, _C_JOINT_MAX, _C_JOINT_MIN, _C_TORQUE, _C_SIGNAL = 0, 9, 10, 11, 12, 13, \
     20, 30   # _C_LAW + the law's code (2, 3, 4); _C_SIGNAL + the signal's index
-
-
-# --------------------------------------------------------------------------------------------------
-# thinning to the drawn number of points (what scara.plots._common.thin and envelope compute)
-# --------------------------------------------------------------------------------------------------
-@kernel
-def thin_count(n, points):
-    """The number of samples :func:`thin_index` keeps of ``n``: all of them up to ``points``, else ``points``."""
-    return n if n <= points else points
-
-
-@kernel
-def _round_half_even(v):
-    """``v`` (>= 0) rounded to the nearest integer, a half to the even one (numpy's ``round``)."""
-    f = math.floor(v)
-    d = v - f
-    r = int(f)
-    if d > 0.5 or (d == 0.5 and r % 2 == 1):
-        return r + 1
-    return r
-
-
-@kernel
-def thin_index(n, points, j):
-    """The index of the ``j``-th kept sample of ``n``: about ``points`` evenly spaced samples, the first and the last
-    included, as :func:`scara.plots._common.thin` (``round(linspace(0, n - 1, points))``, rounding a half to even;
-    with ``n > points`` the spacing is above 1, so no index repeats)."""
-    if n <= points:
-        return j
-    if j == points - 1:
-        return n - 1
-    step = (n - 1) / (points - 1)
-    return _round_half_even(j * step)
-
-
-@kernel
-def envelope_count(n, points):
-    """The number of blocks of :func:`_envelope` over ``n`` samples: ``n`` up to ``points``, else ``n // size``
-    blocks of ``size = ceil(n / points)`` and one for the rest, if any."""
-    if n <= points:
-        return n
-    size = int(math.ceil(n / points))
-    m = n // size
-    return m + 1 if m * size < n else m
-
-
-@kernel
-def _envelope(y, n, dt, points, tt, yy):
-    """The upper envelope of ``|y|`` (``n`` samples at ``t_k = k dt``) as :func:`scara.plots._common.envelope`:
-    the largest ``|y|`` of each block of ``size = ceil(n / points)`` samples at the block's middle time (the last
-    block, shorter, at the last sample), floored at :data:`LOG_FLOOR` for a log axis; into ``tt``, ``yy``
-    (:func:`envelope_count` entries)."""
-    if n <= points:
-        for k in range(n):
-            tt[k] = k * dt
-            yy[k] = max(abs(y[k]), LOG_FLOOR)
-        return
-    size = int(math.ceil(n / points))
-    m = n // size
-    half = 0.5 * size * dt
-    for j in range(m):
-        top = abs(y[j * size])
-        for k in range(j * size + 1, (j + 1) * size):
-            a = abs(y[k])
-            if a > top:
-                top = a
-        tt[j] = (j * size) * dt + half
-        yy[j] = max(top, LOG_FLOOR)
-    if m * size < n:
-        top = abs(y[m * size])
-        for k in range(m * size + 1, n):
-            a = abs(y[k])
-            if a > top:
-                top = a
-        tt[m] = (n - 1) * dt
-        yy[m] = max(top, LOG_FLOOR)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -705,11 +627,14 @@ def _drawn(law, n, dt, points, e, tau, sig, pos, data, out):
     ne = int(data[_H_N_ENV])
     nt = int(data[_H_N_THIN])
     err_t = out[int(data[_H_OUT_AT + _A_ERR_T]):int(data[_H_OUT_AT + _A_ERR_T]) + ne]
-    _envelope(pos, n, dt, points, err_t, out[int(data[_H_OUT_AT + _A_ERR_Y]):int(data[_H_OUT_AT + _A_ERR_Y]) + ne])
+    t = np.empty(n)
+    for k in range(n):
+        t[k] = k * dt
+    envelope_kernel(t, pos, points, err_t, out[int(data[_H_OUT_AT + _A_ERR_Y]):int(data[_H_OUT_AT + _A_ERR_Y]) + ne])
     if law == ROBUST:
         for k in range(n):
             pos[k] = sig[k, 0]   # z_norm, the first signal of the robust law
-        _envelope(pos, n, dt, points, err_t, out[int(data[_H_OUT_AT + _A_Z]):int(data[_H_OUT_AT + _A_Z]) + ne])
+        envelope_kernel(t, pos, points, err_t, out[int(data[_H_OUT_AT + _A_Z]):int(data[_H_OUT_AT + _A_Z]) + ne])
     t_at = int(data[_H_OUT_AT + _A_T])
     f3_at = int(data[_H_OUT_AT + _A_F3])
     t1_at = int(data[_H_OUT_AT + _A_TAU1])
@@ -907,8 +832,8 @@ def control_program(inputs, data, out):
 # --------------------------------------------------------------------------------------------------
 def control_outputs(n: int, points: int) -> ArrayLayout:
     """The output fields of a run of ``n`` samples drawn with ``points`` samples per curve: :data:`SCALARS`, then
-    :data:`ARRAYS` (the envelopes :func:`envelope_count` entries each, the thinned series :func:`thin_count`)."""
-    ne, nt = int(envelope_count(n, points)), int(thin_count(n, points))
+    :data:`ARRAYS` (the envelopes :func:`envelope_length` entries each, the thinned series :func:`thin_length`)."""
+    ne, nt = int(envelope_length(n, points)), int(thin_length(n, points))
     fields = [(name, SCALARS.labels[name] if SCALARS.sizes[name] > 1 else 1) for name in SCALARS.names]
     fields += [(name, ne if name in _ENVELOPES else nt) for name in ARRAYS]
     return ArrayLayout(*fields)
@@ -992,7 +917,7 @@ def control_data(traj, p: ScaraParams | None = None, points: int = 600) -> np.nd
         model=dynamic_array(ScaraParams()), plant=dynamic_array(p.with_payload(0.0)), d3_min=p.d3_min,
         d3_max=p.d3_max, tau_max=TAU_MAX, max_error=MAX_ERROR, limit=LIMIT, B_hat=B_HAT, B_bar=B_BAR,
         adaptive_K_D=ADAPTIVE_K_D, clik_K_P=K_P, clik_K_D=K_D, clik_max_error=0.1, points=points, settle=SETTLE,
-        rest=REST, n_thin=thin_count(n, points), n_envelope=envelope_count(n, points),
+        rest=REST, n_thin=thin_length(n, points), n_envelope=envelope_length(n, points),
         out_at=[getattr(outputs.offsets, name) for name in ARRAYS])
     data = np.concatenate([header, x.ravel(), xd.ravel(), xdd.ravel(), np.zeros(12 * n)])
     fill_joint_reference(data, np.zeros(SCALARS.size))

@@ -166,14 +166,14 @@ def test_the_closed_form_lyapunov_solution_is_scipys():
                                        (70001, 1000), (12345, 9999)])
 def test_thinning_and_envelopes_are_the_figures(n, points):
     idx = thin(n, points)
-    assert pc.thin_count(n, points) == len(idx)
+    assert pc.thin_length(n, points) == len(idx)
     assert [pc.thin_index(n, points, j) for j in range(len(idx))] == idx.tolist()
     t = np.arange(n) * 1e-3
     y = RNG.normal(size=n)
     tt, yy = envelope(t, y, points)
-    assert pc.envelope_count(n, points) == len(tt)
+    assert pc.envelope_length(n, points) == len(tt)
     a, b = np.empty(len(tt)), np.empty(len(tt))
-    pc._envelope(y, n, 1e-3, points, a, b)
+    assert pc.envelope_kernel(t, y, points, a, b) == len(tt)
     np.testing.assert_array_equal(a, tt)
     np.testing.assert_array_equal(b, yy)
 
@@ -193,7 +193,7 @@ def test_the_layouts_and_data_are_those_the_kernel_reads(short):
         np.testing.assert_array_equal(data[at + 4 * n * k:at + 4 * n * (k + 1)].reshape(n, 4), getattr(jref, name))
     for k, name in enumerate(pc.ARRAYS):
         assert int(data[h.out_at + k]) == getattr(outputs.offsets, name)
-    assert outputs.sizes["err_t"] == pc.envelope_count(n, POINTS) and outputs.sizes["t"] == pc.thin_count(n, POINTS)
+    assert outputs.sizes["err_t"] == pc.envelope_length(n, POINTS) and outputs.sizes["t"] == pc.thin_length(n, POINTS)
     with pytest.raises(ScaraError, match="points = 1"):
         pc.control_data(short, points=1)
     with pytest.raises(ScaraError, match="geometry"):
