@@ -400,3 +400,44 @@ def test_a_waypoint_dragged_on_the_top_view_is_the_jupyter_editors_edit(server, 
         assert not outside, outside
     finally:
         ctx.close()
+
+
+def _luminance(rgb: str) -> float:
+    """The relative luminance (WCAG 2) of a computed ``rgb(...)``/``rgba(...)`` colour."""
+    r, g, b = (float(v) / 255 for v in re.findall(r"[\d.]+", rgb)[:3])
+    lin = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in (r, g, b)]
+    return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
+
+
+@pytest.mark.parametrize("mode", ["light", "dark"])
+def test_every_control_reads_in_both_themes_on_a_phone(server, browser, mode):
+    """At 390 px, in the theme's light and dark modes, every panel's labels, typed numbers and menus stand out
+    from what is behind them (WCAG's 4.5:1 for text): a cell's output area is a light block in dark mode, so a
+    panel has its own colours."""
+    pages = _pages()
+    if not pages:
+        pytest.fail("the built book holds no page panel")
+    for page, names in sorted(pages.items()):
+        ctx = browser.new_context(viewport={"width": 390, "height": 900})
+        ctx.add_init_script(f"localStorage.setItem('mode', '{mode}'); localStorage.setItem('theme', '{mode}');")
+        ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(server) else r.abort())
+        pg = ctx.new_page()
+        try:
+            pg.goto(server + page, wait_until="load")
+            settle(pg)
+            for name in names:
+                _wait_seq(pg, name, 0)
+                pairs = pg.evaluate("""(name) => {
+                  const root = document.querySelector(`[data-scara-panel="${name}"]`);
+                  const bg = (e) => { for (; e; e = e.parentElement) { const c = getComputedStyle(e).backgroundColor;
+                    if (c && !/rgba\\(.*,\\s*0\\)$/.test(c) && c !== 'transparent') return c; } return 'rgb(255, 255, 255)'; };
+                  return Array.from(root.querySelectorAll('.scara-panel-label, input[type=number], select, .scara-panel-head b'))
+                    .filter((e) => !e.disabled).map((e) => [e.name || e.className || e.tagName, getComputedStyle(e).color, bg(e)]);
+                }""", name)
+                assert pairs, name
+                for what, fg, bgc in pairs:
+                    a, b = sorted((_luminance(fg), _luminance(bgc)))
+                    ratio = (b + 0.05) / (a + 0.05)
+                    assert ratio >= 4.5, f"{page} {name} {mode}: {what} is {fg} on {bgc} ({ratio:.2f}:1)"
+        finally:
+            ctx.close()
