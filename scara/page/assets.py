@@ -18,7 +18,11 @@ The page panel's contract, for graders, tests and a teacher's scripts:
 * its plotly figures are the ``.scara-panel-figure`` elements inside it, in the order and with the traces of the
   Jupyter panel's ``figures``;
 * its settings are written in the page's address (``#NAME.KEY=VALUE&...``), so a link opens the panel at those
-  settings and a reload keeps them; its reset button returns to the book's values.
+  settings and a reload keeps them; a panel whose edits build on each other (the waypoint editor) also keeps
+  its earlier edits there (``NAME.edits=KEY:VALUE,...;KEY:VALUE,...``, one per stretch of moves at the same
+  waypoint and segment), replayed in order on a reload; its reset button returns to the book's values;
+* a panel with a ``drag`` (:class:`~scara.plots.panels.PageProgram`) lets the reader drag the points of one
+  figure with the pointer: each pointer move sets the declared controls, as typing them would.
 """
 from __future__ import annotations
 
