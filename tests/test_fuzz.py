@@ -653,7 +653,7 @@ NOT_FUZZED = {
     "Geometry", "LumpedParameters", "InertiaParts",
     # raw numba kernels: no input checks by design (they write into caller-given buffers); the checked wrappers
     # above (fkine, inertia, simulate...) are what the fuzz test calls
-    "pose_kernel", "jacobian_kernel", "jacobian_dot_kernel", "ikine_kernel", "planar_trig", "planar_position",
+    "pose_kernel", "pose_of", "jacobian_kernel", "jacobian_dot_kernel", "ikine_kernel", "planar_trig", "planar_position",
     "planar_jacobian", "planar_jacobian_at", "planar_det", "planar_jacobian_dot", "elbow_cosine",
     "manipulability_kernel", "inertia_kernel", "coriolis_kernel", "coriolis_vector_kernel", "gravity_kernel",
     "friction_kernel", "inverse_dynamics_kernel", "bias_kernel", "forward_dynamics_kernel", "regressor_kernel",
