@@ -53,14 +53,20 @@ if (typeof self !== 'undefined' && typeof module === 'undefined') {
   self.onmessage = (ev) => {
     const m = ev.data;
     if (m.type === 'data') {
-      let data = Float64Array.from(m.data);
+      // the data, then the program's scratch (PageProgram.scratch: work space it overwrites in every move)
+      const given = Float64Array.from(m.data), scratch = m.scratch || 0;
+      const size = m.prepare ? m.size : given.length;
+      const data = new Float64Array(size + scratch);
       if (m.prepare) {  // the data made from its compact form by the program's own kernel, once
-        const full = new Float64Array(m.size);
-        const status = SCARA_KERNELS[m.prepare](data, full);
+        const status = SCARA_KERNELS[m.prepare](given, data.subarray(0, size));
         if (Number(status) !== 0) { store[m.panel] = new Error(m.prepare + ' refused the panel data (status ' + status + ')'); return; }
-        data = full;
-      }
+      } else data.set(given);
       store[m.panel] = data;
+      return;
+    }
+    if (m.type === 'dump') {  // the data as the engine holds it, prepared here (a test compares a run on it)
+      const d = store[m.panel];
+      self.postMessage({id: m.id, panel: m.panel, data: d instanceof Error ? null : d.subarray(0, d.length - (m.scratch || 0))});
       return;
     }
     const t0 = performance.now();

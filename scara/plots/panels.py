@@ -335,6 +335,11 @@ class PageProgram:
     accepted move, and in ``react`` the controls a change sets from the data: ``{control: {other control:
     Pick}}`` (pick a waypoint, its sliders show its values). Both front ends do both, from these declarations.
 
+    A program that needs large work arrays on every move (a 70 s run's series) names their size in ``scratch``:
+    both front ends append that many entries to the data, once, and the program finds them after its data (its
+    own offsets), overwrites them in every move and reads none it has not written in that move. :attr:`data`
+    stays the data alone, which is all that is sent to the page, and a move allocates nothing large.
+
     ``drag = {"figure": role, "pick": control, "x": control, "y": control}`` lets the page's reader drag, on
     the figure of that role, the points ``pick`` chooses among (their positions read from the data by the
     ``react`` picks of ``pick`` for ``x`` and ``y``): dragging one picks it and sets ``x`` and ``y`` to the
@@ -356,6 +361,7 @@ class PageProgram:
     carry: tuple | None = None
     react: dict = None
     drag: dict | None = None
+    scratch: int = 0
 
     def __post_init__(self):
         if self.drag is not None:
@@ -381,7 +387,15 @@ class PageProgram:
                                  f"(status {status})")
             object.__setattr__(self, "compact", compact)
             object.__setattr__(self, "data", full)
+        if not (isinstance(self.scratch, int) and not isinstance(self.scratch, bool) and self.scratch >= 0):
+            raise ScaraError(f"scratch must be a count of entries (an int >= 0), got {self.scratch!r}")
+        if self.scratch and self.carry is not None:
+            raise ScaraError("a program that carries an output into its data cannot have a scratch (the page "
+                             "sends its data again after every move)")
         object.__setattr__(self, "data", _np.array(self.data, dtype=_np.float64).ravel())
+        # what the kernel is given: the data itself, or a copy followed by the scratch
+        object.__setattr__(self, "_given", self.data if not self.scratch else
+                           _np.concatenate([self.data, _np.zeros(self.scratch)]))
         object.__setattr__(self, "paths", dict(self.paths or {}))
         object.__setattr__(self, "titles", dict(self.titles or {}))
         fields = set(self.outputs.names) | set(self.inputs)
@@ -446,7 +460,7 @@ class PageProgram:
         """Run the kernel for ``settings``: the outputs by field (one number as a float, more as a new array) with
         the settings, or :class:`ScaraError` with the refusal's message."""
         out = _np.zeros(self.outputs.size)
-        status = int(self.kernel(self.pack(settings, controls), self.data, out))
+        status = int(self.kernel(self.pack(settings, controls), self._given, out))
         values = self.values(out, settings)
         if status != 0:
             if status not in self.refusals:
@@ -524,6 +538,7 @@ class PageProgram:
             data=_b64((self.compact if self.prepare is not None else self.data)),
             prepare=None if self.prepare is None else getattr(self.prepare, "__name__", str(self.prepare)),
             data_size=int(self.data.size),
+            scratch=int(self.scratch),
             carry=None if self.carry is None else dict(field=self.carry[0], offset=int(self.carry[1])),
             drag=None if self.drag is None else dict(self.drag),
             react={name: {target: dict(offset=int(k.offset), stride=int(k.stride), index=k.index, as_=k.as_)

@@ -620,14 +620,13 @@ def _theory_z(q, model, plant, K_P_z):
 
 
 @kernel
-def _drawn(law, n, dt, points, e, tau, sig, pos, data, out):
+def _drawn(law, n, dt, points, e, tau, sig, pos, t, data, out):
     """The arrays the panel draws (:data:`ARRAYS`, at the offsets the header gives): the envelope of the position
     error's norm ``pos``, the thinned time, torques and the law's own signal (the payload estimate, the envelope of
-    ``||z||`` or ``e_z`` in mm)."""
+    ``||z||`` or ``e_z`` in mm). ``t`` (N,) receives the sample times."""
     ne = int(data[_H_N_ENV])
     nt = int(data[_H_N_THIN])
     err_t = out[int(data[_H_OUT_AT + _A_ERR_T]):int(data[_H_OUT_AT + _A_ERR_T]) + ne]
-    t = np.empty(n)
     for k in range(n):
         t[k] = k * dt
     envelope_kernel(t, pos, points, err_t, out[int(data[_H_OUT_AT + _A_ERR_Y]):int(data[_H_OUT_AT + _A_ERR_Y]) + ne])
@@ -738,10 +737,13 @@ def control_core(inputs, data, out):
     xdd = data[xdd_at:xdd_at + 4 * n].reshape((n, 4))
     q0 = np.empty(4)
     qd0 = np.empty(4)
-    # the series of the move, all in one block (one allocation): the run's q, qd, qdd, tau (N, 4), e (N, 4), the
-    # signals (N, n_sig), the error's norm (N,)
+    # the series of the move, all in one block: the run's q, qd, qdd, tau (N, 4), e (N, 4), the signals
+    # (N, n_sig), the error's norm and the sample times (N,); the panel's scratch after the data (control_scratch),
+    # or one allocation when the data has none
     joint = _JOINT[law] == 1
-    block = np.empty((21 + n_sig) * n)
+    need = (22 + n_sig) * n
+    at_block = int(data[_H_JREF]) + 12 * n
+    block = data[at_block:at_block + need] if data.shape[0] >= at_block + need else np.empty(need)
     q_out = _rows(block, 0, n, 4)
     qd_out = _rows(block, 4 * n, n, 4)
     qdd_out = _rows(block, 8 * n, n, 4)
@@ -749,6 +751,7 @@ def control_core(inputs, data, out):
     e = _rows(block, 16 * n, n, 4)
     pos = block[20 * n:21 * n]
     sig_out = _rows(block, 21 * n, n, n_sig)
+    t = block[(21 + n_sig) * n:(22 + n_sig) * n]
     if joint:
         if data[_H_JREF_CODE] != 0:   # the reference refused: its run again, for the numbers its message names
             return fill_joint_reference(data.copy(), out)
@@ -816,7 +819,7 @@ def control_core(inputs, data, out):
     if law == NO_INTEGRAL:
         out[_O_STEADYZ_MM] = 1e3 * out[_O_STEADYZ]
         out[_O_THEORY_MM] = 1e3 * _theory_z(q_out[n - 1], model, plant, inputs[_I_KP])
-    _drawn(law, n, dt, int(data[_H_POINTS]), e, tau_out, sig_out, pos, data, out)
+    _drawn(law, n, dt, int(data[_H_POINTS]), e, tau_out, sig_out, pos, t, data, out)
     return 0
 
 
@@ -878,6 +881,12 @@ def control_prepare(compact, data):
         return code
     fill_joint_reference(data, np.zeros(_SCALARS_SIZE))
     return 0
+
+
+def control_scratch(n: int) -> int:
+    """The entries of work space :func:`control_core` takes after the data of a run of ``n`` samples (the
+    panel's :attr:`~scara.plots.panels.PageProgram.scratch`): the series of the law with the most signals."""
+    return (22 + max(_NSIG)) * int(n)
 
 
 def control_compact(traj, p: ScaraParams | None = None, points: int = 600):

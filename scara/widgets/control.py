@@ -13,7 +13,7 @@ from ..plots._common import CONTROLLER_LABELS, FIGURE_BUDGET, MAX_POINTS
 from ..plots.control import TUNING_CONTROLLERS, TUNING_ROLES, tuning_bindings, tuning_build
 from ..plots.panels import Control, Flag, PageProgram, Panel, Text, program_panel, start_value
 from ..programs.control import (ADAPTIVE_K_D, INPUTS, control_compact, control_data, control_outputs, control_prepare,
-                                control_program, control_refusals)
+                                control_program, control_refusals, control_scratch)
 from ._common import LivePanel, trajectory_arg
 
 __all__ = ["control_panel", "control_declaration", "make_controller"]
@@ -77,7 +77,7 @@ def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 6
     note = Text("At rest the tool stays {final_position_error_mm:.3g} mm from its target: the payload's weight is not "
                 "fully compensated.")
     program = PageProgram(control_program, INPUTS, outputs=outputs, refusals=control_refusals(p), **tuning_bindings(),
-                          notes=((Flag("not_compensated"), note),), **data)
+                          notes=((Flag("not_compensated"), note),), scratch=control_scratch(len(traj.t)), **data)
     return program_panel("controllers", "Chapter 6: tune a controller on the 70 s run", controls, program,
                          {"tuning": tuning_build}, widget="control_panel", selector="controller",
                          roles={"tuning": TUNING_ROLES})

@@ -436,3 +436,43 @@ def test_the_program_translates_and_runs_in_the_page(short):
         np.testing.assert_allclose(got, want, rtol=1e-6, atol=1e-9 * np.max(np.abs(want)))
     if refused:
         pytest.xfail(f"the page's runtime refused: {refused}")
+
+
+def test_the_scratch_after_the_data_gives_the_same_moves(short):
+    """The panel appends control_scratch entries to the data (PageProgram.scratch) for the run's series: moves
+    through it, one law after another and refused ones between (each leaving its series there), equal moves on the
+    data alone (which allocate their own), bit for bit; the program reads nothing it did not write in the move. The
+    panel's program sends only the data to the page and hands the kernel the data and its scratch."""
+    n = len(short.t)
+    data = pc.control_data(short, points=POINTS)
+    outputs = pc.control_outputs(n, POINTS)
+    with_scratch = np.concatenate([data, np.full(pc.control_scratch(n), np.nan)])  # stale NaN would show
+    moves = [_settings(law) for law in pc.LAWS] + [_settings("robust", dict(K_P=-1.0))] + \
+            [_random_settings(law) for law in reversed(pc.LAWS)]
+    for values in moves:
+        assert _same_moves(_program(values, with_scratch, outputs), _program(values, data, outputs)), values
+    assert np.array_equal(with_scratch[:data.size], data)   # the data itself is never written
+    decl = control_declaration(short, points=POINTS)
+    prog = decl.page
+    assert prog.scratch == pc.control_scratch(n) and prog.data.size == data.size
+    described = prog.describe(decl)
+    assert described["scratch"] == prog.scratch and described["data_size"] == data.size
+
+
+def _same_moves(a, b) -> bool:
+    """Two results of :func:`_program` equal entry by entry (arrays bit for bit, NaN equal to NaN)."""
+    (s1, o1), (s2, o2) = a, b
+    return s1 == s2 and o1.keys() == o2.keys() and all(
+        np.array_equal(np.asarray(o1[k]), np.asarray(o2[k]), equal_nan=True) for k in o1)
+
+
+def test_a_scratch_is_a_count(short):
+    import dataclasses
+
+    prog = control_declaration(short, points=POINTS).page
+    for bad in (-1, 2.5, "10", True):
+        with pytest.raises(ScaraError, match=f"scratch must be a count of entries .*got {re.escape(repr(bad))}"):
+            dataclasses.replace(prog, scratch=bad)
+    bare = dataclasses.replace(prog, scratch=0)
+    assert bare._given is bare.data   # no scratch: the kernel is given the data itself
+    assert np.array_equal(prog._given[:prog.data.size], prog.data) and prog._given.size == prog.data.size + prog.scratch

@@ -233,7 +233,7 @@
 
     send() {  // the data to the engine (prepared there from its compact form when the program has a prepare)
       engine().postMessage({type: "data", panel: this.name, data: this.data, prepare: this.prog.prepare,
-                            size: this.prog.data_size});
+                            size: this.prog.data_size, scratch: this.prog.scratch || 0});
     }
 
     react(name) {  // the controls a change of `name` sets, read from the data (PageProgram.react)
@@ -489,14 +489,28 @@
       engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
     }
 
+    engineData() {  // a promise of the data as the engine holds it (prepared in the page), scratch left out
+      const id = nextId++;
+      return new Promise((resolve) => {
+        waiting[id] = (m) => resolve(m.data ? Array.from(m.data) : null);
+        engine().postMessage({type: "dump", id, panel: this.name, scratch: this.prog.scratch || 0});
+      });
+    }
+
     next() {
       this.busy = false;
       if (this.pending) { const job = this.pending; this.pending = null; this.run(job); }
     }
 
-    drawn(f) {  // after a figure's redraw: the theme's colours again (the page's dark mode)
-      f.gd.__themeDark = false;
-      if (window.scaraReader) return window.scaraReader.applyTheme(f.gd);
+    redraw(f) {  // one figure redrawn from its record, in the page's theme: drawn dark at once when the page is
+      // dark and the figure already follows it (scaraReader.darkened), otherwise themed after the redraw
+      const [data, layout] = drawable(f.fig);
+      const dark = !!(window.scaraReader && window.scaraReader.darkened && window.scaraReader.darkened(f.gd, data, layout));
+      return Plotly.react(f.gd, data, layout).then(() => {
+        if (dark || !window.scaraReader) return undefined;
+        f.gd.__themeDark = false;
+        return window.scaraReader.applyTheme(f.gd);
+      });
     }
 
     outputs(out, settings) {
@@ -550,7 +564,7 @@
         else if (this.stale) f.fig.layout.title = JSON.parse(JSON.stringify(f.spec.figure.layout.title || {}));
         f.fig.layout.datarevision = this.seq + 1;
         f.heading.textContent = titleText(f.fig);
-        return Plotly.react(f.gd, ...drawable(f.fig)).then(() => this.drawn(f));
+        return this.redraw(f);
       });
       this.stale = false;
       this.root.classList.remove("scara-stale");
@@ -607,7 +621,7 @@
           f.fig.data.forEach((t) => { t.visible = false; });
           f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: this.spec.stale_title});
           f.heading.textContent = titleText(f.fig);
-          Plotly.react(f.gd, ...drawable(f.fig)).then(() => this.drawn(f));
+          this.redraw(f);
         }
       }
       this.record({});
