@@ -82,10 +82,18 @@ function $size(n) {
   if (!(Number.isInteger(n) && n >= 0)) throw new RangeError("array size " + n + " is not a count");
   return n;
 }
-function $two(a, m) {  // a seen as rows of m entries: the row length, and for a small array the cache of its row views
+function $two(a, m) {  // a seen as rows of m entries: the row length, and for a small array the caches of its views
   a.n1 = m | 0;
-  a.$v = a.length <= 64 * m ? [] : undefined;
+  a.$v = a.length <= 64 * m ? [] : undefined;  // its rows
+  a.$s = undefined;  // its slices and reshapes, made on first use (every 2-D array has these three, in this order)
   return a;
+}
+function $cached(a, key, make) {  // a small 2-D array's view made once (a law's work rows, sliced on every step)
+  let s = a.$s;
+  if (s === undefined) s = a.$s = new Map();
+  let v = s.get(key);
+  if (v === undefined) { v = make(); s.set(key, v); }
+  return v;
 }
 function $empty2(n, m) { return $two(new Float64Array($size(n) * $size(m)), m); }
 function $row(a, i) {  // a row's view; a small array makes each once (a law's work rows: no allocation per step)
@@ -102,11 +110,14 @@ function $slice(a, lo, hi) {  // a[lo:hi]: entries of a 1-D array, rows of a 2-D
   hi = hi === null ? n : (hi < 0 ? Math.max(hi + n, 0) : Math.min(hi, n));
   hi = Math.max(hi, lo);
   if (a.n1 === undefined) return a.subarray(lo, hi);
-  return $two(a.subarray(lo * a.n1, hi * a.n1), a.n1);
+  const m = a.n1;
+  if (a.$v === undefined) return $two(a.subarray(lo * m, hi * m), m);
+  return $cached(a, lo * 65 + hi, () => $two(a.subarray(lo * m, hi * m), m));  // a small array: n <= 64
 }
 function $reshape(a, n, m) {  // a contiguous array (1-D, or rows of a 2-D one) seen as (n, m): a view
   if (!(a instanceof Float64Array) || n * m !== a.length) throw new RangeError("cannot reshape " + a.length + " entries to (" + n + ", " + m + ")");
-  return $two(a.subarray(0, a.length), m);
+  if (a.n1 === undefined || a.$v === undefined) return $two(a.subarray(0, a.length), m);
+  return $cached(a, -1 - m, () => $two(a.subarray(0, a.length), m));  // keys below 0: the reshapes
 }
 function $copy(a) { const c = a.slice(); return a.n1 !== undefined ? $two(c, a.n1) : c; }  // a.copy()
 function $shape(a, k) { if (k === 0) return $n0(a); if (k === 1 && a.n1 !== undefined) return a.n1; throw new RangeError("shape[" + k + "]"); }
