@@ -137,6 +137,31 @@
     return p;
   }
 
+  function put(obj, path, value) {  // obj at a plotly attribute path ("xaxis.tickfont.color", "annotations[2].font.color")
+    const keys = path.replace(/\[(\d+)\]/g, ".$1").split(".");
+    let o = obj;
+    for (const k of keys.slice(0, -1)) {
+      if (o[k] === undefined || o[k] === null) o[k] = {};
+      o = o[k];
+    }
+    o[keys[keys.length - 1]] = value;
+  }
+
+  /** A figure about to be redrawn with new (data, layout) on a dark page, which it already follows: the dark
+   * colours written into them, so one redraw draws it dark (no relayout after it). True when it did. */
+  function darkened(gd, data, layout) {
+    if (!isDark() || !gd.__themeDark || !gd._fullLayout) return false;
+    for (const [k, v] of Object.entries(darkLayout(gd))) put(layout, k, v);
+    const light = cssVar("--pst-color-text-base", "#ced6dd");
+    data.forEach((trace) => {
+      for (const attr of TRACE_COLOURS) {
+        const v = get(trace, attr), lum = luminance(v);
+        if (typeof v === "string" && lum !== null && lum < 0.08) put(trace, attr, light);
+      }
+    });
+    return true;
+  }
+
   function themeAll() {
     return Promise.all(Array.from(document.querySelectorAll(".js-plotly-plot")).map(applyTheme));
   }
@@ -205,7 +230,7 @@
     Search.htmlToText.__readable = true;
   }
 
-  window.scaraReader = { texToText, stripMath, applyTheme, themeAll, figures, rgba, luminance };
+  window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance };
 
   readableSearch();
   document.addEventListener("DOMContentLoaded", readableSearch);
