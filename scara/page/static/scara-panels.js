@@ -210,6 +210,29 @@
       const replay = saved && this.prog.carry && saved.edits ? this.edits(saved.edits) : [];
       if (replay.length) this.run({t0: performance.now(), move: 0, replay});  // the earlier edits first, undrawn
       else this.schedule(performance.now());
+      this.warmWhenSeen();
+    }
+
+    warmWhenSeen() {  // the engine's first runs of a program are 2-3 times slower (the browser compiles it as it
+      // runs): once the reader has the panel in view, each choice of its selector runs twice at the panel's
+      // settings, results unused, one at a time and only while no move is waiting, so the reader's moves find
+      // it compiled
+      const sel = this.spec.selector ? this.spec.controls.find((c) => c.name === this.spec.selector) : null;
+      const choices = sel ? sel.options.map(([, v]) => ({[sel.name]: v})) : [{}];
+      const queue = choices.concat(choices);
+      const step = () => {
+        if (!queue.length) return;
+        if (this.busy) { setTimeout(step, 300); return; }
+        const id = nextId++;
+        waiting[id] = () => step();
+        const inputs = this.pack(Object.assign({}, this.values, queue.shift()));
+        engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
+      };
+      if (typeof IntersectionObserver === "undefined") { step(); return; }
+      const seen = new IntersectionObserver((entries) => {
+        if (entries.some((e) => e.isIntersecting)) { seen.disconnect(); step(); }
+      });
+      seen.observe(this.root);
     }
 
     stretch(values) {  // the picks (PageProgram.react's controls) a carrying panel's edit was made at
