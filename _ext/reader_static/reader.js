@@ -137,11 +137,16 @@
     return p;
   }
 
-  function put(obj, path, value) {  // obj at a plotly attribute path ("xaxis.tickfont.color", "annotations[2].font.color")
+  // obj at a plotly attribute path ("xaxis.tickfont.color", "annotations[2].font.color" or "annotations.2.font.color"):
+  // a missing object on the way is made, a missing entry of a list is an error (the path names what is not there)
+  function put(obj, path, value) {
     const keys = path.replace(/\[(\d+)\]/g, ".$1").split(".");
     let o = obj;
     for (const k of keys.slice(0, -1)) {
-      if (o[k] === undefined || o[k] === null) o[k] = {};
+      if (o[k] === undefined || o[k] === null) {
+        if (Array.isArray(o)) throw new Error("layout path " + path + ": no entry " + k);
+        o[k] = {};
+      }
       o = o[k];
     }
     o[keys[keys.length - 1]] = value;
@@ -230,7 +235,7 @@
     Search.htmlToText.__readable = true;
   }
 
-  window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance };
+  window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance, put };
 
   readableSearch();
   document.addEventListener("DOMContentLoaded", readableSearch);

@@ -56,17 +56,18 @@ if (typeof self !== 'undefined' && typeof module === 'undefined') {
       // the data, then the program's scratch (PageProgram.scratch: work space it overwrites in every move)
       const given = Float64Array.from(m.data), scratch = m.scratch || 0;
       const size = m.prepare ? m.size : given.length;
-      const data = new Float64Array(size + scratch);
+      const full = new Float64Array(size + scratch);
+      const data = full.subarray(0, size);  // the data alone, a view of the block the program gets
       if (m.prepare) {  // the data made from its compact form by the program's own kernel, once
-        const status = SCARA_KERNELS[m.prepare](given, data.subarray(0, size));
+        const status = SCARA_KERNELS[m.prepare](given, data);
         if (Number(status) !== 0) { store[m.panel] = new Error(m.prepare + ' refused the panel data (status ' + status + ')'); return; }
       } else data.set(given);
-      store[m.panel] = data;
+      store[m.panel] = {data, full};
       return;
     }
     if (m.type === 'dump') {  // the data as the engine holds it, prepared here (a test compares a run on it)
       const d = store[m.panel];
-      self.postMessage({id: m.id, panel: m.panel, data: d instanceof Error ? null : d.subarray(0, d.length - (m.scratch || 0))});
+      self.postMessage({id: m.id, panel: m.panel, data: d instanceof Error ? null : d.data.slice()});
       return;
     }
     const t0 = performance.now();
@@ -75,7 +76,7 @@ if (typeof self !== 'undefined' && typeof module === 'undefined') {
       if (!fn) throw new Error('the engine has no program ' + m.kernel);
       if (store[m.panel] instanceof Error) throw store[m.panel];
       const out = new Float64Array(m.size);
-      const status = fn(Float64Array.from(m.inputs), store[m.panel], out);
+      const status = fn(Float64Array.from(m.inputs), store[m.panel].full, out);
       self.postMessage({id: m.id, panel: m.panel, status: Number(status), out: out, compute_ms: performance.now() - t0},
                        [out.buffer]);
     } catch (err) {

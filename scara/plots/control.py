@@ -634,8 +634,8 @@ TUNING_PATHS = {
     **{f"annotations.{i}.visible": Flag(f"{name}_shown") for i, name in enumerate(_NOTED)},
 }
 TUNING_TITLE = Text("{controller}: max ‖e_p‖ after 1 s {max_position_error_mm:.4g} mm, at rest "
-                    "{final_position_error_mm:.3g} mm, peak f3 {peak_f3:.0f} N, chattering {chattering:.3g}<br>"
-                    "{duration:.0f} s simulated at {dt_ms:g} ms (compiled loop)")
+                    "{final_position_error_mm:.3g} mm<br>peak f3 {peak_f3:.0f} N, chattering {chattering:.3g}; "
+                    "{duration:.0f} s simulated at {dt_ms:g} ms")
 
 
 def tuning_bindings() -> dict:

@@ -221,8 +221,8 @@ def check_control(values, figs, traj, jref):
                 joint_reference=jref if c.reference_kind == "joint" else None)
     s = control_summary(res)
     head = (f"{_label(res)}: max ‖e_p‖ after 1 s {1e3 * s['max_position_error']:.4g} mm, at rest "
-            f"{1e3 * s['final_position_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
-    assert figs[0]["title"].split("<br>")[0] == head, (figs[0]["title"], head)
+            f"{1e3 * s['final_position_error']:.3g} mm<br>peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
+    assert figs[0]["title"].split(";")[0] == head, (figs[0]["title"], head)
 
 
 # -- the moves, per panel: (control, action, argument); "refuse" moves must be refused --------------------

@@ -119,6 +119,11 @@
     };
     return worker;
   }
+  function ask(message, answered) {  // a message to the engine whose answer goes to answered(reply)
+    const id = nextId++;
+    waiting[id] = answered;
+    engine().postMessage(Object.assign({id}, message));
+  }
 
   // ---- the address: #NAME.KEY=VALUE&... ------------------------------------------------------------------------
   function readAddress() {
@@ -174,21 +179,6 @@
     return new Float64Array(bytes.buffer);
   }
   function plain(x) { return x instanceof Float64Array ? Array.from(x, (v) => (Number.isNaN(v) ? null : v)) : x; }
-  function setPath(tree, path, value) {
-    const keys = path.split(".");
-    let o = tree;
-    for (let i = 0; i < keys.length - 1; i++) {
-      const k = Array.isArray(o) ? parseInt(keys[i], 10) : keys[i];
-      if (o[k] === undefined || o[k] === null) {
-        if (Array.isArray(o)) throw new Error("layout path " + path + ": no entry " + k);
-        o[k] = {};
-      }
-      o = o[k];
-    }
-    const last = keys[keys.length - 1];
-    o[Array.isArray(o) ? parseInt(last, 10) : last] = value;
-  }
-
   class PagePanel {
     constructor(root, spec) {
       this.root = root;
@@ -223,10 +213,7 @@
       const step = () => {
         if (!queue.length) return;
         if (this.busy) { setTimeout(step, 300); return; }
-        const id = nextId++;
-        waiting[id] = () => step();
-        const inputs = this.pack(Object.assign({}, this.values, queue.shift()));
-        engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
+        this.compute(this.pack(Object.assign({}, this.values, queue.shift())), () => step());
       };
       if (typeof IntersectionObserver === "undefined") { step(); return; }
       const seen = new IntersectionObserver((entries) => {
@@ -504,20 +491,17 @@
 
     run(job) {  // the engine computes one move at a time; the page draws the last result meanwhile
       this.busy = true;
-      const id = nextId++;
       // what this run computes: the latest settings, or an earlier edit the address replays
       job.values = job.replay ? job.replay[0] : Object.assign({}, this.values);
-      const inputs = this.pack(job.values);
-      waiting[id] = (m) => this.done(job, m);
-      engine().postMessage({type: "run", id, panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size});
+      this.compute(this.pack(job.values), (m) => this.done(job, m));
+    }
+
+    compute(inputs, answered) {  // one run of the panel's program in the engine
+      ask({type: "run", panel: this.name, kernel: this.prog.kernel, inputs, size: this.prog.size}, answered);
     }
 
     engineData() {  // a promise of the data as the engine holds it (prepared in the page), scratch left out
-      const id = nextId++;
-      return new Promise((resolve) => {
-        waiting[id] = (m) => resolve(m.data ? Array.from(m.data) : null);
-        engine().postMessage({type: "dump", id, panel: this.name, scratch: this.prog.scratch || 0});
-      });
+      return new Promise((resolve) => ask({type: "dump", panel: this.name}, (m) => resolve(m.data ? Array.from(m.data) : null)));
     }
 
     next() {
@@ -581,7 +565,7 @@
           const i = f.spec.index[key];
           for (const [prop, b] of Object.entries(props)) f.fig.data[i][prop] = this.bound(b, v);
         }
-        for (const [path, b] of Object.entries(this.prog.paths[role] || {})) setPath(f.fig.layout, path, this.bound(b, v));
+        for (const [path, b] of Object.entries(this.prog.paths[role] || {})) window.scaraReader.put(f.fig.layout, path, this.bound(b, v));
         const title = this.prog.titles[role];
         if (title !== undefined) f.fig.layout.title = Object.assign({}, f.fig.layout.title || {}, {text: format(title, v)});
         else if (this.stale) f.fig.layout.title = JSON.parse(JSON.stringify(f.spec.figure.layout.title || {}));
