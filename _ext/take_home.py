@@ -1,15 +1,16 @@
 """Local Sphinx extension: the course to take home.
 
-At the start of an HTML build the course's sources are packed, in memory, into one deterministic zip (sorted
-entries, fixed timestamps and permissions, no caches, no build, no virtual environment); when the build
-finishes it is written to ``_downloads/scara-course.zip`` in the output folder. Every page of the book ends
-with a short block linking to it.
+When an HTML build finishes, the course's sources are packed into one deterministic zip (sorted entries, fixed
+timestamps and permissions, no caches, no build, no virtual environment), written to
+``_downloads/scara-course.zip`` in the output folder. Every page of the book ends with a short block linking to
+it.
 
-The zip holds one folder, ``scara-course/``: the chapters (``book/*.ipynb`` with their outputs cleared,
-``book/*.md``), the package (``scara/`` without ``__pycache__``), ``pyproject.toml``, ``requirements.txt``
-(whose ``-e .`` installs the package from the unpacked folder), ``references.bib``, the book's configuration
-(``_config.yml``, ``_toc.yml``, ``_ext/*.py``) and a README (``take_home/README.md``) whose one command installs
-everything and opens the chapters in JupyterLab.
+The zip holds one folder, ``scara-course/``: the chapters (``book/*.ipynb`` as JupyterLab reads them, written by
+``lab_copy`` from the sources and the numbers the build gave every label: glued numbers as inline expressions,
+captions, references as links with the book's text, outputs cleared; ``book/*.md``), the package (``scara/``
+without ``__pycache__``), ``pyproject.toml``, ``requirements.txt`` (whose ``-e .`` installs the package from the
+unpacked folder), ``references.bib``, the book's configuration (``_config.yml``, ``_toc.yml``, ``_ext/*.py``) and
+a README (``take_home/README.md``) whose one command installs everything and opens the chapters in JupyterLab.
 """
 from __future__ import annotations
 
@@ -39,8 +40,9 @@ def _clear_outputs(raw: bytes) -> bytes:
     return (json.dumps(nb, indent=1, ensure_ascii=False) + "\n").encode()
 
 
-def _members(root: Path) -> dict[str, bytes]:
-    """Archive path (under the top folder) -> content, for every file the take-home course holds."""
+def _members(root: Path, notebooks: dict[str, bytes] | None = None) -> dict[str, bytes]:
+    """Archive path (under the top folder) -> content, for every file the take-home course holds; ``notebooks``
+    (``book/NAME.ipynb`` -> bytes) replaces the chapters by their JupyterLab copies (``lab_copy``)."""
     files: list[Path] = []
     files += sorted((root / "book").glob("*.ipynb")) + sorted((root / "book").glob("*.md"))
     files += [p for p in sorted((root / "scara").rglob("*")) if p.is_file()]
@@ -55,7 +57,7 @@ def _members(root: Path) -> dict[str, bytes]:
             continue
         data = p.read_bytes()
         if p.suffix == ".ipynb":
-            data = _clear_outputs(data)
+            data = notebooks[rel.as_posix()] if notebooks and rel.as_posix() in notebooks else _clear_outputs(data)
         out[rel.as_posix()] = data
     readme = root / "take_home" / "README.md"
     if not readme.is_file():  # building from the unpacked course itself: its README is the template
@@ -65,11 +67,12 @@ def _members(root: Path) -> dict[str, bytes]:
     return out
 
 
-def build_zip(root: Path) -> bytes:
-    """The take-home zip for the sources under ``root``, as bytes (the same bytes for the same sources)."""
+def build_zip(root: Path, notebooks: dict[str, bytes] | None = None) -> bytes:
+    """The take-home zip for the sources under ``root``, as bytes (the same bytes for the same sources and
+    ``notebooks``, the chapters' JupyterLab copies)."""
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=9) as zf:
-        members = _members(root)
+        members = _members(root, notebooks)
         for name in sorted(members):
             info = zipfile.ZipInfo(f"{TOP}/{name}", date_time=FIXED_TIME)
             info.compress_type = zipfile.ZIP_DEFLATED
@@ -80,16 +83,17 @@ def build_zip(root: Path) -> bytes:
 
 
 def _pack(app):
-    if app.builder.format == "html":
-        app._take_home_zip = build_zip(Path(app.srcdir))
+    app._take_home = app.builder.format == "html"
 
 
 def _write(app, exc):
-    data = getattr(app, "_take_home_zip", None)
-    if exc is None and data is not None:
+    """The zip, once the build has given every label its number: the chapters as JupyterLab copies."""
+    if exc is None and getattr(app, "_take_home", False):
+        from lab_copy import lab_copies  # noqa: PLC0415 - beside this file, on the book's extension path
+
         dest = Path(app.outdir) / ZIP_DIR / ZIP_NAME
         dest.parent.mkdir(parents=True, exist_ok=True)
-        dest.write_bytes(data)
+        dest.write_bytes(build_zip(Path(app.srcdir), lab_copies(app)))
 
 
 BLOCK = """
@@ -103,7 +107,7 @@ command of its <code>README.md</code> (Python 3.11) to open the chapters live in
 
 
 def _page_context(app, pagename, templatename, context, doctree):
-    if doctree is None or getattr(app, "_take_home_zip", None) is None or "pathto" not in context:
+    if doctree is None or not getattr(app, "_take_home", False) or "pathto" not in context:
         return  # generated pages (search, index) carry no link
     href = context["pathto"](f"{ZIP_DIR}/{ZIP_NAME}", 1)
     context["body"] = (context.get("body") or "") + BLOCK.format(href=href, name=ZIP_NAME, top=TOP)

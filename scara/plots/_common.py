@@ -185,7 +185,7 @@ def use_book_renderer() -> None:
 
 def _plain_numpy_scalars() -> None:
     """Show numpy scalars as plain numbers (``22.5``, not ``np.float64(22.5)``) in IPython, so that numbers
-    glued into the text with ``myst_nb.glue`` can be formatted (``{glue:text}`name:.3f```)."""
+    glued into the text with :func:`scara.book.glue` can be formatted (``{glue:text}`name:.3f```)."""
     try:
         from IPython import get_ipython
     except ImportError:  # pragma: no cover
@@ -212,7 +212,7 @@ def slider(steps: list[dict], prefix: str, active: int = 0, pad_top: int = 40) -
 
 
 class _FigureBundle:
-    """Wraps a figure so that ``myst_nb.glue`` stores its mime bundle (a plotly figure displays itself
+    """Wraps a figure so that myst-nb's ``glue`` stores its mime bundle (a plotly figure displays itself
     through ``_ipython_display_``, which glue cannot capture)."""
 
     def __init__(self, fig: go.Figure):
@@ -236,6 +236,6 @@ def publish(fig: go.Figure, name: str) -> None:
 
     so that ``{numref}`fig-arm``` refers to it from any chapter.
     """
-    from myst_nb import glue
+    from ..book import glue
 
     glue(name, _FigureBundle(fig), display=True)

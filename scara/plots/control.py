@@ -34,7 +34,8 @@ __all__ = [
     "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
     "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "saturation_figure",
     "figure_slider", "tuning_figure", "tuning_build", "tuning_values", "tuning_title", "tuning_bindings",
-    "TUNING_CONTROLLERS", "TUNING_ROLES", "TUNING_TRACES", "TUNING_PATHS", "TUNING_TITLE",
+    "TUNING_CONTROLLERS", "TUNING_ROLES", "TUNING_TRACES", "TUNING_PATHS", "TUNING_TITLE", "own_roles",
+    "tuning_own_build", "tuning_own_update",
 ]
 
 #: the live panel's controllers (keys of ``CONTROLLER_LABELS``), in the order of its dropdown (its program's laws)
@@ -578,12 +579,18 @@ def tuning_values(result, summary: dict, points: int = 1200) -> dict:
     return values
 
 
+#: the run's figures at the head of the tuning figure's title, two lines (the static figure's and the panel's)
+TUNING_HEAD = ("{controller}: max ‖e_p‖ after 1 s {max_position_error_mm:.4g} mm, at rest {final_position_error_mm:.3g} mm"
+               "<br>peak f3 {peak_f3:.0f} N, chattering {chattering:.3g}")
+
+
 def tuning_title(result, summary: dict, extra: str = "") -> str:
     """The title of :func:`tuning_figure`: the run's figures (error after 1 s and at rest, peak quill force,
     chattering) and ``extra``."""
     s = summary
-    head = (f"{run_label(result)}: max ‖e_p‖ after 1 s {1e3 * s['max_position_error']:.4g} mm, at rest "
-            f"{1e3 * s['final_position_error']:.3g} mm, peak f3 {s['peak_tau'][2]:.0f} N, chattering {s['chattering']:.3g}")
+    head = TUNING_HEAD.format(controller=run_label(result), max_position_error_mm=1e3 * s["max_position_error"],
+                              final_position_error_mm=1e3 * s["final_position_error"], peak_f3=s["peak_tau"][2],
+                              chattering=s["chattering"])
     return head + (f"<br>{extra}" if extra else "")
 
 
@@ -633,9 +640,43 @@ TUNING_PATHS = {
     **{f"annotations.{i}.text": _NOTES[name] for i, name in enumerate(_NOTED)},
     **{f"annotations.{i}.visible": Flag(f"{name}_shown") for i, name in enumerate(_NOTED)},
 }
-TUNING_TITLE = Text("{controller}: max ‖e_p‖ after 1 s {max_position_error_mm:.4g} mm, at rest "
-                    "{final_position_error_mm:.3g} mm<br>peak f3 {peak_f3:.0f} N, chattering {chattering:.3g}; "
-                    "{duration:.0f} s simulated at {dt_ms:g} ms")
+TUNING_TITLE = Text(TUNING_HEAD + "; {duration:.0f} s simulated at {dt_ms:g} ms")
+
+
+def own_roles(labels) -> tuple:
+    """The roles of the error traces that :func:`tuning_own_build` adds for the reader's own controllers
+    ``labels``, after :data:`TUNING_ROLES`."""
+    return tuple(f"own error {k}" for k in range(len(labels)))
+
+
+def _own_props(values, label: str) -> dict:
+    """The changing properties of the error trace of the reader's controller ``label``: the run's error envelope
+    (the outputs ``err_t``, ``err_y`` of the panel's program) when ``values`` are a run of it, else hidden."""
+    if values["controller"] != label:
+        return {"visible": False}
+    return {"x": _value("err_t", values), "y": _value("err_y", values), "visible": True}
+
+
+def tuning_own_build(values, labels) -> go.Figure:
+    """:func:`tuning_build` with one more error trace per controller of the reader's own (``labels``: their names
+    in the panel's dropdown, :func:`scara.widgets.control_panel`), after its other traces (roles
+    :func:`own_roles`): in black, each with its own dash, the one of the run's controller shown (the five of
+    the panel are hidden for such a run, and its own signal is ``e_z``). :func:`tuning_own_update` updates it."""
+    fig = tuning_build(values)
+    for k, label in enumerate(labels):
+        props = dict(x=_value("err_t", values), y=_value("err_y", values), **_own_props(values, label))
+        fig.add_trace(go.Scatter(mode="lines", name=label, line=dict(color=PALETTE["reference"], width=1.8,
+                                                                     dash=DASHES[k % len(DASHES)]), **props),
+                      row=1, col=1)
+    return fig
+
+
+def tuning_own_update(update: dict, values, labels) -> dict:
+    """``update`` (the update of :func:`tuning_build`'s traces for ``values``, by the panel's program) with the
+    error traces of :func:`tuning_own_build` (by role, :func:`own_roles`)."""
+    traces = dict(update.get("traces") or {})
+    traces.update({role: _own_props(values, label) for role, label in zip(own_roles(labels), labels)})
+    return dict(update, traces=traces)
 
 
 def tuning_bindings() -> dict:

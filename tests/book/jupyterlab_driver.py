@@ -2,8 +2,10 @@
 controls of the live panels and watch the figures redraw.
 
 Used by ``tests/book/test_jupyterlab.py`` (which asserts) and ``benchmarks/live_panels.py`` (which times). The
-server is started on 127.0.0.1 with a free port and no token, on a temporary copy of the chapters (running
-them never touches the committed notebooks), with its own settings folder (no news pop-up, every cell kept in
+server is started on 127.0.0.1 with a free port and no token, on a temporary copy of the chapters as a learner
+gets them: the take-home copies from the built book's download (``_downloads/scara-course.zip``: the chapters as
+JupyterLab reads them, numbers, captions and references included; running them never touches the committed
+notebooks), with its own settings folder (no news pop-up, every cell kept in
 the page) and stopped afterwards. Nothing is fetched from outside this machine: every request that is not to
 the server is aborted and recorded.
 """
@@ -19,11 +21,14 @@ import sys
 import tempfile
 import time
 import urllib.request
+import zipfile
 from contextlib import contextmanager
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 BOOK = ROOT / "book"
+#: the take-home download of the built book, whose chapters a learner opens in JupyterLab
+TAKE_HOME = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html")) / "_downloads" / "scara-course.zip"
 CHROMIUM = os.environ.get("SCARA_CHROMIUM", "/usr/bin/chromium")
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
         "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic"]
@@ -55,15 +60,23 @@ def _free_port() -> int:
 
 @contextmanager
 def jupyterlab_server(notebooks=None, timeout: float = 90.0):
-    """Start ``jupyter lab`` on a temporary copy of ``notebooks`` (default: every chapter); yield its base URL.
-    The server, its kernels and its temporary folders are removed on exit."""
+    """Start ``jupyter lab`` on a temporary copy of ``notebooks`` (default: every chapter and page of the book's
+    folder in the take-home download, :data:`TAKE_HOME`); yield its base URL. The server, its kernels and its
+    temporary folders are removed on exit."""
     exe = jupyter_executable()
     if exe is None:
         raise RuntimeError("jupyter is not installed in this environment")
+    if notebooks is None and not TAKE_HOME.is_file():
+        raise RuntimeError(f"the book is not built: {TAKE_HOME} is missing (jupyter-book build . first)")
     tmp = Path(tempfile.mkdtemp(prefix="scara-lab-"))
     root = tmp / "book"
     root.mkdir()
-    for nb in notebooks or sorted(BOOK.glob("*.ipynb")):
+    if notebooks is None:
+        with zipfile.ZipFile(TAKE_HOME) as zf:
+            for name in zf.namelist():
+                if Path(name).parent.name == "book" and Path(name).suffix in (".ipynb", ".md"):
+                    (root / Path(name).name).write_bytes(zf.read(name))
+    for nb in notebooks or ():
         shutil.copy(nb, root / Path(nb).name)
     settings = tmp / "settings"
     for name, value in SETTINGS.items():
@@ -294,31 +307,27 @@ class Lab:
         return entries
 
     def raw_myst_text(self) -> list[str]:
-        """Raw MyST markup a reader sees in the rendered markdown cells: role or directive names in braces
-        ({eq}, {doc}, {numref}, ...), code fences of directives, or an unknown directive other than
-        ``glue:figure`` (jupyterlab-myst has no ``glue``: it shows a folded "glue:figure - Unknown Directive"
-        box where the book places a captioned figure; the figure itself is under its code cell)."""
+        """What a reader should never see in the rendered markdown cells, each with some context: raw MyST markup
+        (a role or directive name in braces, a directive's code fence), an "Unknown Directive" box, an inline
+        expression left as its code (``glued(...)``: not evaluated) or evaluated to an error, a raw glue key
+        (``name:.2f``), and a bare label (``fig-ch1-frames``, ``eq-jacobian``, ``ex-traj-corner``, ``sec-...``)
+        where the book prints "Fig. 1.2", "(4.17)" or "Exercise 3.4"."""
         return self.page.evaluate("""() => {
           const out = [];
+          const seen = (text, m, what) => out.push(what + ': ' + text.slice(Math.max(0, m.index - 60), m.index + 60));
           for (const cell of document.querySelectorAll('.jp-MarkdownCell .jp-RenderedMarkdown, .jp-MarkdownCell .jp-RenderedMySTMarkdown')) {
-            const walker = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
-            let text = '';
-            for (let n = walker.nextNode(); n; n = walker.nextNode()) {
-              let skip = false;
-              for (let a = n.parentElement; a && a !== cell; a = a.parentElement) {
-                if (a.tagName === 'PRE') {
-                  for (let b = a.parentElement, k = 0; b && b !== cell && k < 6; b = b.parentElement, k++) {
-                    if (/^\\s*glue:figure\\s*-\\s*Unknown Directive/.test(b.textContent)) { skip = true; break; }
-                  }
-                }
-                if (skip) break;
-              }
-              if (!skip) text += n.textContent;
-            }
-            const m = text.match(/\\{(eq|doc|numref|glue:text|glue:figure|glue|dropdown|math|ref|cite|cite:p|cite:t|figure|admonition|note)\\}|```/);
-            if (m) out.push(text.slice(Math.max(0, m.index - 60), m.index + 60));
-            const unknown = text.match(/(\\S+) - Unknown Directive/g) || [];
-            for (const u of unknown) if (!u.startsWith('glue:figure')) out.push(u);
+            const text = cell.innerText;
+            const checks = [
+              [/\\{(eq|doc|numref|glue:text|glue:md|glue:figure|glue|eval|dropdown|math|ref|cite|cite:p|cite:t|figure|admonition|note|exercise|solution)\\}|```/, 'raw markup'],
+              [/Unknown Directive/, 'unknown directive'],
+              [/glued\\(/, 'unevaluated number'],
+              [/\\b(NameError|KeyError|TypeError|SyntaxError|AttributeError|ValueError):/, 'error in the text'],
+              [/\\b[a-z][a-z0-9_]*:\\.[0-9]*[fge%]\\b/, 'raw glue key'],
+              [/(^|[\\s(\\[])(fig|eq|ex|sec|tab)-[a-z0-9]+(-[a-z0-9]+)+\\b/, 'bare label'],
+            ];
+            for (const [re, what] of checks) { const m = text.match(re); if (m) seen(text, m, what); }
+            for (const e of cell.querySelectorAll('.myst-RenderedExpressionError, [data-mime-type="application/vnd.jupyter.stderr"]'))
+              out.push('error in an inline expression: ' + e.textContent.slice(0, 120));
           }
           return out;
         }""")

@@ -1,0 +1,163 @@
+"""What the chapters' notebooks use to put computed numbers and figures into their prose, in the built book and
+in JupyterLab alike.
+
+* :func:`glue` records a value under a name. In the book's build (where ``myst_nb`` is installed) it also hands
+  the value to myst-nb's ``glue``, whose ``{glue:text}`` roles and ``{glue:figure}`` directives place it in the
+  page. Without myst-nb (the course's own install) it only records it.
+* The take-home copy of a chapter (written by the book's build for JupyterLab) shows each such number through
+  an inline expression ``{eval}`glued("name", ".2f")``` that JupyterLab's MyST extension evaluates in the kernel
+  when the text's cell runs: :func:`glued` formats the value as the book's ``{glue:text}`name:.2f``` does
+  (:func:`format_plain_text`), so that both show the same characters, and a learner who edits an input and runs
+  the chapter again reads the new numbers. Each captioned figure is shown by :func:`show` in a cell of its own
+  above its caption.
+* The checks the book runs on its own numbers (hidden cells) carry the cell magic ``%%book_check`` in the
+  take-home copy (:func:`book_check`): a check that fails, as a check of the book's values does once the learner
+  changed an input, prints one line that says so and the chapter goes on; every other statement of the cell runs.
+"""
+from __future__ import annotations
+
+import ast
+import re
+
+__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "book_check", "load_ipython_extension"]
+
+#: every value glued in this kernel, by name (the latest one of a name)
+GLUED: dict = {}
+#: the names a hidden check could not glue for the inputs of this run (its statement failed), as regular
+#: expressions, with the note
+UNDEFINED: dict = {}
+#: what the text shows for such a number
+UNDEFINED_TEXT = "n/a (not defined for your inputs: see the note of the hidden check above)"
+
+
+def glue(name: str, value, display: bool = True):
+    """Record ``value`` under ``name`` (:data:`GLUED`) and, where myst-nb is installed (the book's build), glue it
+    for the page (``myst_nb.glue(name, value, display)``); without myst-nb, ``display=True`` shows the value."""
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"a glued value needs a name (a non-empty string), got {name!r}")
+    GLUED[name] = value
+    try:
+        from myst_nb import glue as myst_glue  # noqa: PLC0415 - the book's toolchain, absent from the course's install
+    except ImportError:
+        myst_glue = None
+    if myst_glue is not None:
+        return myst_glue(name, value, display)
+    if display:
+        from IPython.display import display as show_value  # noqa: PLC0415
+
+        show_value(value)
+    return None
+
+
+def plain_text(value) -> str:
+    """The ``text/plain`` form of ``value`` a Jupyter kernel sends (IPython's plain-text formatter): what the
+    book's build reads a glued value from."""
+    from IPython import get_ipython  # noqa: PLC0415
+    from IPython.core.formatters import PlainTextFormatter  # noqa: PLC0415
+
+    ip = get_ipython()
+    # the kernel's own formatter: the book's figures module teaches it to print numpy scalars as plain numbers
+    formatter = ip.display_formatter.formatters["text/plain"] if ip is not None else PlainTextFormatter()
+    return formatter(value)
+
+
+def format_plain_text(text: str, spec: str) -> str:
+    """A glued value's ``text/plain`` as the book prints it with the format spec ``spec`` (``{glue:text}`name:spec```):
+    the text read as a Python literal where it is one (a string loses its quotes), then converted by the spec's
+    type letter (``s`` to a string; ``b c d o x X`` to an integer; ``e E f F g G n %`` to a float) and formatted.
+
+    >>> format_plain_text("0.05625", ".4f")
+    '0.0563'
+    >>> format_plain_text("'p1'", "")
+    'p1'
+    """
+    try:
+        value = ast.literal_eval(text)
+    except (SyntaxError, ValueError):
+        value = text
+    if spec == "":
+        return str(value)
+    kind = spec[-1]
+    if kind == "s":
+        value = str(value)
+    elif kind in "bcdoxX":
+        value = int(value)
+    elif kind in "eEfFgGn%":
+        value = float(value)
+    return format(value, spec)
+
+
+def glued(name: str, spec: str = ""):
+    """The value glued as ``name`` in this kernel, as the book shows it: formatted with ``spec`` (see
+    :func:`format_plain_text`); a value with a Markdown form (``IPython.display.Markdown``: a version, a date) as
+    its text;
+    :data:`UNDEFINED_TEXT` when a hidden check could not compute it for this run's inputs (:func:`book_check`
+    printed why). Raises ``KeyError`` naming the value when nothing was glued under ``name`` yet (run the cells
+    above first)."""
+    if name not in GLUED and any(re.fullmatch(pattern, name) for pattern in UNDEFINED):
+        return UNDEFINED_TEXT
+    if name not in GLUED:
+        raise KeyError(f"no value is glued as {name!r} yet: run the chapter's cells above this text first")
+    value = GLUED[name]
+    if hasattr(value, "_repr_markdown_"):  # a Markdown object (a version, a date): its text, shown as text
+        return str(value._repr_markdown_())
+    return format_plain_text(plain_text(value), spec)
+
+
+def show(name: str):
+    """The figure (or any value) glued as ``name``, returned so that a cell ending with ``show(name)`` displays it."""
+    if name not in GLUED:
+        raise KeyError(f"no figure is glued as {name!r} yet: run the chapter's cells above this one first")
+    return GLUED[name]
+
+
+def _glued_names(stmt) -> list[str]:
+    """The names a statement glues (``glue("name", ...)``), as regular expressions: a literal name exactly, an
+    f-string name (``glue(f"w_{k}", ...)``) with any text where its fields go."""
+    names = []
+    for n in ast.walk(stmt):
+        if not (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "glue" and n.args):
+            continue
+        first = n.args[0]
+        if isinstance(first, ast.Constant) and isinstance(first.value, str):
+            names.append(re.escape(first.value))
+        elif isinstance(first, ast.JoinedStr):
+            names.append("".join(re.escape(v.value) if isinstance(v, ast.Constant) else ".+" for v in first.values))
+    return names
+
+
+def book_check(line: str, cell: str, namespace: dict | None = None) -> list[str]:
+    """Run ``cell``, one of the chapter's hidden checks of its own numbers, statement by statement in
+    ``namespace`` (the kernel's own, for the cell magic ``%%book_check``). A statement that fails (a check that
+    does not hold, or a step of one that no longer applies) is noted and the next statement runs, so that the
+    numbers the cell also computes for the text are computed where they can be. Prints one line for the cell when
+    anything failed, and returns the notes (one per failed statement). The checks hold for the book's own inputs;
+    after a learner's edit some may not, and the chapter must go on."""
+    if namespace is None:
+        from IPython import get_ipython  # noqa: PLC0415
+
+        namespace = get_ipython().user_ns
+    notes = []
+    for stmt in ast.parse(cell).body:
+        code = compile(ast.Module(body=[stmt], type_ignores=[]), "<book check>", "exec")
+        try:
+            exec(code, namespace)  # noqa: S102 - the chapter's own hidden check
+        except Exception as exc:  # noqa: BLE001 - every failure of a check is reported in one line, never raised
+            what = "does not hold" if isinstance(exc, AssertionError) else f"failed ({type(exc).__name__}: {exc})"
+            notes.append(f"line {stmt.lineno}: {what}"[:200])
+            for pattern in _glued_names(stmt):  # the numbers this statement would have given the text
+                UNDEFINED[pattern] = notes[-1]
+    if notes:
+        more = f" and {len(notes) - 1} more" if len(notes) > 1 else ""
+        print(f"A hidden check of the book's own numbers did not pass here ({notes[0]}{more}): expected after a "
+              "change of the chapter's inputs; the text shows the numbers of your run where it can.")
+    return notes
+
+
+def load_ipython_extension(ipython):
+    """``%load_ext scara.book``: registers the cell magic ``%%book_check`` (:func:`book_check`) and gives the
+    notebook :func:`glued` and :func:`show`, which the text's inline expressions call."""
+    ipython.push({"glued": glued, "show": show})
+    ipython.register_magic_function(lambda line, cell: book_check(line, cell, ipython.user_ns) and None,
+                                    magic_kind="cell", magic_name="book_check")
+
