@@ -13,7 +13,8 @@ as the built page, in forms it renders:
   3.2." in bold and the caption (the figure itself is drawn by the cell above, ``scara.plots.publish``);
 * every reference (``{numref}``, ``{eq}``, ``{ref}``, ``{doc}``, a markdown link to a label) becomes a link whose text is the one the book
   prints ("Fig. 1.2", "(4.17)", "Exercise 3.4", a section's or page's title), to ``#label`` in the same notebook or
-  ``file.ipynb#label`` in another; a citation becomes "Siciliano et al. 2009", linked to the references page;
+  ``file.ipynb#label`` in another; a citation becomes "[Siciliano et al. 2009]" (where the book prints its key, "[SSVO09]"), linked to the
+  references page;
 * a labelled display equation carries its book number as ``\\tag{3.6}`` after a ``(label)=`` target, and the first
   cell's front matter turns the extension's own equation numbering off and numbers exercises as the book does
   (``3.1``, ``3.2``, ...);
@@ -118,8 +119,8 @@ def _role(match: re.Match, res: Resolver, glued: dict, found: list) -> str:
     if name == "doc":
         shown, href = res.doc(target)
         return _link(text if text is not None else shown, href)
-    shown, href = res.cite(target)  # cite, cite:p, cite:t
-    return _link(shown, href)
+    shown, href = res.cite(target)  # cite, cite:p, cite:t: in brackets, where the book prints [SSVO09]
+    return _link(f"[{shown}]", href)
 
 
 def _label_link(match: re.Match, res: Resolver) -> str:
@@ -212,6 +213,38 @@ def lab_notebook(nb: dict, res: Resolver, glued: dict) -> dict:
     return nb
 
 
+BIBLIOGRAPHY = re.compile(r"^(?P<fence>`{3,}|:{3,})\{bibliography\}[ \t]*\n(?P<body>.*?)^(?P=fence)[ \t]*$", re.M | re.S)
+
+
+def lab_markdown(text: str, res: Resolver, entries: dict | None = None) -> str:
+    """A markdown page of the book (``notation.md``, ``references.md``) as JupyterLab's markdown preview reads
+    it: its references as links (see :func:`lab_notebook`) and each ``{bibliography}`` directive as the list of
+    its entries (``entries``: key -> (short form, type, the entry in markdown), filtered by ``type == "book"`` or
+    ``type != "book"`` as the directive says)."""
+    def bibliography(m):
+        rule = re.search(r':filter:\s*type\s*(==|!=)\s*"([^"]+)"', m.group("body"))
+        keep = [(short, md) for short, kind, md in (entries or {}).values()
+                if rule is None or ((kind == rule.group(2)) == (rule.group(1) == "=="))]
+        return "\n".join(f"- **[{short}]** {md}" for short, md in sorted(keep))
+
+    text = BIBLIOGRAPHY.sub(bibliography, text)
+    text = EQUATION.sub(lambda m: _equation(m, res), text)
+    text = ROLE.sub(lambda m: _role(m, res, {}, []), text)
+    return LABEL_LINK.sub(lambda m: _label_link(m, res), text)
+
+
+def bibliography_entries(path) -> dict:
+    """key -> (short form, entry type, the entry in markdown) for every entry of the BibTeX file ``path``."""
+    from pybtex.database import parse_file  # noqa: PLC0415
+    from pybtex.plugin import find_plugin  # noqa: PLC0415
+
+    bib = parse_file(str(path))
+    style, markdown = find_plugin("pybtex.style.formatting", "plain")(), find_plugin("pybtex.backends", "markdown")()
+    return {e.key: (short_citation(bib.entries[e.key]), bib.entries[e.key].type,
+                    " ".join(e.text.render(markdown).split()))
+            for e in style.format_entries(bib.entries.values())}
+
+
 def glued_bundles(store: dict) -> dict:
     """Every value a chapter glued, as the book's build stored them (myst-nb's ``NAME.glue.json`` beside the
     executed notebook: key -> its display output): key -> the value's mime bundle."""
@@ -246,7 +279,12 @@ def resolvers(app) -> dict:
     env, builder = app.env, app.builder
     std, math = env.get_domain("std"), env.get_domain("math")
     src = Path(app.srcdir)
-    files = {d: Path(env.doc2path(d)).name for d in env.found_docs}
+    def copy_name(d):  # a MyST notebook (a .md page with a kernel) is a notebook in the copy
+        path = Path(env.doc2path(d))
+        is_notebook = path.suffix == ".md" and "kernelspec:" in path.read_text(encoding="utf-8").split("\n---", 1)[0]
+        return path.with_suffix(".ipynb").name if is_notebook else path.name
+
+    files = {d: copy_name(d) for d in env.found_docs}
     titles = {d: env.titles[d].astext() for d in env.found_docs if d in env.titles}
     citations = {}
     for bib in app.config.bibtex_bibfiles:
@@ -274,25 +312,42 @@ def resolvers(app) -> dict:
 
     out = {}
     for docname in sorted(env.found_docs):
-        if not env.doc2path(docname).endswith(".ipynb"):
+        if not env.doc2path(docname).endswith((".ipynb", ".md")):
             continue
         nums = env.toc_fignumbers.get(docname, {})
         first = next((n for kind in nums.values() for n in kind.values() if n), None)
         out[docname] = Resolver(docname, lookup=lookup_for(docname), titles=titles, files=files,
-                                citations=citations, chapter=str(first[0]) if first else None)
+                                citations=citations, chapter=str(first[0]) if first and len(first) > 1 else None)
     return out
 
 
-def lab_copies(app) -> dict[str, bytes]:
-    """``book/NAME.ipynb`` -> the bytes of its take-home copy, for every notebook of the finished build."""
+def lab_copies(app) -> dict[str, bytes | None]:
+    """The take-home copy of the book's folder: ``book/NAME.ipynb`` -> the bytes of its JupyterLab copy, for every
+    notebook of the finished build and every MyST notebook (a ``.md`` page with a kernel, as the introduction:
+    ``book/intro.md`` -> None, dropped, and ``book/intro.ipynb`` written); a plain markdown page -> its text as
+    the markdown preview reads it (:func:`lab_markdown`)."""
+    from myst_nb.core.read import read_myst_markdown_notebook  # noqa: PLC0415
+
     src = Path(app.srcdir)
     executed_dir = Path(app.outdir).parent / "jupyter_execute"
+    entries = {}
+    for bib in app.config.bibtex_bibfiles:
+        entries.update(bibliography_entries(src / bib))
     out = {}
     for docname, res in resolvers(app).items():
-        path = src / app.env.doc2path(docname, base=False)
-        nb = json.loads(path.read_text(encoding="utf-8"))
-        store = executed_dir / Path(app.env.doc2path(docname, base=False)).with_suffix(".glue.json")
+        rel = Path(app.env.doc2path(docname, base=False))
+        text = (src / rel).read_text(encoding="utf-8")
+        if rel.suffix == ".md":
+            if "kernelspec:" not in text.split("\n---", 1)[0]:
+                out[rel.as_posix()] = (lab_markdown(text, res, entries)).encode()
+                continue
+            nb = read_myst_markdown_notebook(text)
+            nb = json.loads(json.dumps(nb))
+            out[rel.as_posix()] = None
+            rel = rel.with_suffix(".ipynb")
+        else:
+            nb = json.loads(text)
+        store = executed_dir / rel.with_suffix(".glue.json")
         glued = glued_bundles(json.loads(store.read_text(encoding="utf-8"))) if store.is_file() else {}
-        copy_ = lab_notebook(nb, res, glued)
-        out[path.relative_to(src).as_posix()] = (json.dumps(copy_, indent=1, ensure_ascii=False) + "\n").encode()
+        out[rel.as_posix()] = (json.dumps(lab_notebook(nb, res, glued), indent=1, ensure_ascii=False) + "\n").encode()
     return out

@@ -40,9 +40,10 @@ def _clear_outputs(raw: bytes) -> bytes:
     return (json.dumps(nb, indent=1, ensure_ascii=False) + "\n").encode()
 
 
-def _members(root: Path, notebooks: dict[str, bytes] | None = None) -> dict[str, bytes]:
+def _members(root: Path, notebooks: dict[str, bytes | None] | None = None) -> dict[str, bytes]:
     """Archive path (under the top folder) -> content, for every file the take-home course holds; ``notebooks``
-    (``book/NAME.ipynb`` -> bytes) replaces the chapters by their JupyterLab copies (``lab_copy``)."""
+    (``book/NAME.ipynb`` or ``.md`` -> bytes, or None to leave a page out) replaces the book's pages by their
+    JupyterLab copies (``lab_copy.lab_copies``)."""
     files: list[Path] = []
     files += sorted((root / "book").glob("*.ipynb")) + sorted((root / "book").glob("*.md"))
     files += [p for p in sorted((root / "scara").rglob("*")) if p.is_file()]
@@ -56,9 +57,16 @@ def _members(root: Path, notebooks: dict[str, bytes] | None = None) -> dict[str,
         if any(part.startswith(".") for part in rel.parts):
             continue
         data = p.read_bytes()
-        if p.suffix == ".ipynb":
-            data = notebooks[rel.as_posix()] if notebooks and rel.as_posix() in notebooks else _clear_outputs(data)
+        if notebooks and rel.as_posix() in notebooks:  # the JupyterLab copy (None: replaced by a notebook)
+            if notebooks[rel.as_posix()] is None:
+                continue
+            data = notebooks[rel.as_posix()]
+        elif p.suffix == ".ipynb":
+            data = _clear_outputs(data)
         out[rel.as_posix()] = data
+    for name, data in (notebooks or {}).items():  # a page the copy writes as a notebook (the introduction)
+        if data is not None and name not in out:
+            out[name] = data
     readme = root / "take_home" / "README.md"
     if not readme.is_file():  # building from the unpacked course itself: its README is the template
         readme = root / "README.md"

@@ -79,7 +79,7 @@ def test_the_copy_reads_as_the_book():
     assert ("See [Fig. 3.1](#fig-a), [Fig. 1.2](01_kinematics.ipynb#fig-other), [(3.6)](#eq-a), "
             "[(1.6)](01_kinematics.ipynb#eq-far), [Exercise 3.4](#ex-a), [the table](06_control.ipynb#sec-a), "
             "[Notation](notation.md), [chapter 1](01_kinematics.ipynb) and "
-            "[Siciliano et al. 2009; Khatib 1987](references.md); [that section](06_control.ipynb#sec-a).") in md[0]
+            "[\\[Siciliano et al. 2009; Khatib 1987\\]](references.md); [that section](06_control.ipynb#sec-a).") in md[0]
     assert md[1] == ('Speed {eval}`glued("v", ".4f")` m/s and {eval}`glued("w")`.\n\n(eq-a)=\n$$\nx = 1\n'
                      '\\tag{3.6}\n$$\n')
     results = out["cells"][3]["metadata"]["user_expressions"]
@@ -242,3 +242,25 @@ def test_a_chapter_that_opens_with_a_check_loads_the_magic_first():
     nb = _nb(("markdown", "# T", {}), ("code", "assert True", {"tags": ["remove-cell"]}), ("code", "x = 1", {}))
     code = [c["source"] for c in lab_copy.lab_notebook(nb, _resolver(), {})["cells"] if c["cell_type"] == "code"]
     assert code == ["%load_ext scara.book", "%%book_check\nassert True", "x = 1"]
+
+
+def test_a_markdown_page_reads_as_the_book():
+    entries = {"siciliano2009": ("Siciliano et al. 2009", "book", "Bruno Siciliano\\. *Robotics*\\. 2009\\."),
+               "khatib1987": ("Khatib 1987", "article", "Oussama Khatib\\. A unified approach\\. 1987\\.")}
+    text = ("# References\n\n```{bibliography}\n:filter: type == \"book\"\n```\n\nPapers:\n\n"
+            "```{bibliography}\n:filter: type != \"book\"\n```\n\nSee {cite}`siciliano2009` and {eq}`eq-far`.\n")
+    out = lab_copy.lab_markdown(text, _resolver("book/references"), entries)
+    assert out == ("# References\n\n- **[Siciliano et al. 2009]** Bruno Siciliano\\. *Robotics*\\. 2009\\.\n\nPapers:\n\n"
+                   "- **[Khatib 1987]** Oussama Khatib\\. A unified approach\\. 1987\\.\n\n"
+                   "See [\\[Siciliano et al. 2009\\]](#) and [(1.6)](01_kinematics.ipynb#eq-far).\n")
+
+
+def test_the_markdown_pages_of_the_copy_carry_no_role_or_directive(copies):
+    with zipfile.ZipFile(ZIP) as zf:
+        pages = {Path(n).name: zf.read(n).decode() for n in zf.namelist() if n.endswith(".md") and "/book/" in n}
+    assert set(pages) == {"notation.md", "references.md"}, "the introduction is a notebook in the copy"
+    for name, text in pages.items():
+        assert not RAW.search(text), f"{name}: {RAW.search(text).group(0)} left"
+        assert "{bibliography}" not in text and "```{" not in text, f"{name}: a directive left"
+    bib = len(re.findall(r"^@", (ROOT / "references.bib").read_text(), re.M))
+    assert pages["references.md"].count("- **[") == bib, "every entry of the bibliography is listed once"
