@@ -46,7 +46,9 @@ LABEL_LINK = re.compile(r"\]\((?P<url>[A-Za-z][\w\-]*)\)")
 EXPLICIT = re.compile(r"^(?P<text>.*?)\s*<(?P<target>[^<>]+)>$", re.S)
 
 CHECK_MAGIC = "%%book_check"
-LOAD_MAGIC = "%load_ext scara.book"
+#: what the first code cell runs first: scara.book's extension (%%book_check, glued), loaded again on a re-run
+#: without IPython's "already loaded" message
+LOAD_MAGIC = "import scara.book; scara.book.load_ipython_extension(get_ipython())"
 
 
 @dataclass

@@ -155,7 +155,8 @@ def book_check(line: str, cell: str, namespace: dict | None = None) -> list[str]
 
 
 def load_ipython_extension(ipython):
-    """``%load_ext scara.book``: registers the cell magic ``%%book_check`` (:func:`book_check`) and gives the
+    """``%load_ext scara.book`` (or this function called again, as the take-home chapters' first cell does: a
+    second call changes nothing): registers the cell magic ``%%book_check`` (:func:`book_check`) and gives the
     notebook :func:`glued` and :func:`show`, which the text's inline expressions call."""
     ipython.push({"glued": glued, "show": show})
     ipython.register_magic_function(lambda line, cell: book_check(line, cell, ipython.user_ns) and None,

@@ -1,5 +1,5 @@
 """The pages without a live panel read right in JupyterLab too (the chapters with panels are read by
-``test_jupyterlab.py`` after their panels are moved): the verification appendix and the package page, from the
+``test_jupyterlab.py`` after their panels are moved): the introduction, the verification appendix and the package page, from the
 take-home download, after Run All: no cell error, no raw MyST markup, no unevaluated or failed number, no bare
 label (:meth:`jupyterlab_driver.Lab.raw_myst_text`), nothing in the browser's console (a reference the extension
 cannot resolve logs "Cross reference target was not found") and no request outside the server.
@@ -16,7 +16,7 @@ import pytest
 import jupyterlab_driver as lab_driver
 
 IN_CI = os.environ.get("CI", "").lower() == "true"
-PAGES = ["appendix_verification.ipynb", "package.ipynb"]
+PAGES = ["intro.ipynb", "appendix_verification.ipynb", "package.ipynb"]
 
 
 def _unavailable(reason: str):

@@ -89,7 +89,7 @@ def test_the_copy_reads_as_the_book():
     assert md[2] == "(fig-a)=\n**Fig. 3.1.** The caption, with [(3.6)](#eq-a)."
     code = [c for c in out["cells"] if c["cell_type"] == "code"]
     assert all(c["outputs"] == [] and c["execution_count"] is None for c in code)
-    assert code[0]["source"].startswith("%load_ext scara.book\nfrom scara.book import glue")
+    assert code[0]["source"].startswith(lab_copy.LOAD_MAGIC + "\nfrom scara.book import glue")
     assert code[1]["source"].startswith("%%book_check\nassert v > 0")
     assert all(c["metadata"]["jupyter"]["source_hidden"] for c in code)
 
@@ -241,7 +241,7 @@ def test_an_edited_chapter_runs_to_the_end_and_its_numbers_follow(name, copies, 
 def test_a_chapter_that_opens_with_a_check_loads_the_magic_first():
     nb = _nb(("markdown", "# T", {}), ("code", "assert True", {"tags": ["remove-cell"]}), ("code", "x = 1", {}))
     code = [c["source"] for c in lab_copy.lab_notebook(nb, _resolver(), {})["cells"] if c["cell_type"] == "code"]
-    assert code == ["%load_ext scara.book", "%%book_check\nassert True", "x = 1"]
+    assert code == [lab_copy.LOAD_MAGIC, "%%book_check\nassert True", "x = 1"]
 
 
 def test_a_markdown_page_reads_as_the_book():
