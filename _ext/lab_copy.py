@@ -184,7 +184,7 @@ def lab_notebook(nb: dict, res: Resolver, glued: dict) -> dict:
     first_code = next((c for c in cells if c["cell_type"] == "code"), None)
     if first_code is not None and "remove-cell" in first_code.get("metadata", {}).get("tags", []):
         # a check cell's magic must be its first line: the loading goes in a cell of its own before it
-        cells.insert(cells.index(first_code), {"cell_type": "code", "execution_count": None, "outputs": [],
+        cells.insert(cells.index(first_code), {"cell_type": "code", "id": "scara-book-load", "execution_count": None, "outputs": [],
                                                "metadata": {"tags": ["hide-input"]}, "source": LOAD_MAGIC})
     for cell in cells:
         meta = cell.setdefault("metadata", {})

@@ -57,8 +57,9 @@ from ..kinematics import IK_OK, IK_OUTSIDE_ANNULUS, SINGULAR_SIN, Geometry, ikin
 from ..kinematics import planar_jacobian, planar_trig
 from ..params import ScaraParams
 
-__all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "control_program", "control_core", "control_data",
-           "control_outputs", "control_refusals", "thin_length", "thin_index", "envelope_length"]
+__all__ = ["LAWS", "OTHER_LAW", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "control_program", "control_core",
+           "control_data", "control_outputs", "control_refusals", "run_outputs", "own_run_outputs",
+           "joint_reference_rows", "joint_reference_refusal", "thin_length", "thin_index", "envelope_length"]
 
 # --------------------------------------------------------------------------------------------------
 # the panel's controls, the laws, the layouts of the data and of the outputs
@@ -66,6 +67,9 @@ __all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "control_program", "
 #: The controllers of the panel's dropdown, in its order (``inputs[0]`` is the index): the controllers' names
 LAWS = ("robust", "adaptive", "operational", "operational_noint", "independent")
 ROBUST, ADAPTIVE, OPERATIONAL, NO_INTEGRAL, INDEPENDENT = range(5)
+#: The index :func:`run_outputs` takes for a law the program does not run (a reader's own controller, run by
+#: :func:`scara.simulate`): no error trace of the five is shown, and its own signal drawn is ``e_z``
+OTHER_LAW = len(LAWS)
 #: The controller class of each law, and whether it tracks the joint reference (1) or the operational one (0)
 _CLASSES = (RobustController, AdaptiveController, OperationalSpaceController, OperationalSpaceController,
             IndependentJointController)
@@ -688,6 +692,28 @@ def _run_refusal(law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max,
     return base + _C_LAW_OTHER
 
 
+@kernel
+def run_outputs(law, n, dt, e, tau, sig, pos, t, data, out):
+    """What the panel shows of a run that went through (``e = x_d - x_e``, ``tau`` (N, 4), ``sig`` (N, n_sig) the
+    law's signals, at ``t_k = k dt``), written in ``out`` (:func:`control_outputs`, on the data of
+    :func:`control_data`): the figures of the chapter's table (:func:`_run_figures`), the title's numbers (mm, N,
+    s, ms), the note's flag and the arrays drawn (:func:`_drawn`; ``pos`` and ``t`` (N,) are work space). ``law``
+    is the index of :data:`LAWS`, or :data:`OTHER_LAW` for a law the panel does not know (its own signal is then
+    ``e_z``). Returns 0, or the refusal code of a run with nothing after the settling time. The one definition of
+    a run's figures for every law the panel runs: the five of its program and a reader's own
+    (:func:`own_run_outputs`)."""
+    out[_O_DURATION] = (n - 1) * dt
+    if not _run_figures(e, tau, n, dt, data[_H_SETTLE], data[_H_REST], pos, out):
+        return _R_SHORT
+    out[_O_MAXP_MM] = 1e3 * out[_O_MAXP]
+    out[_O_FINALP_MM] = 1e3 * out[_O_FINALP]
+    out[_O_PEAK_F3] = out[_O_PEAK + 2]
+    out[_O_DT_MS] = 1e3 * dt
+    out[_O_NOT_COMPENSATED] = 1.0 if out[_O_FINALP] > 1e-3 else 0.0
+    _drawn(law, n, dt, int(data[_H_POINTS]), e, tau, sig, pos, t, data, out)
+    return 0
+
+
 # --------------------------------------------------------------------------------------------------
 # the program
 # --------------------------------------------------------------------------------------------------
@@ -798,15 +824,9 @@ def control_core(inputs, data, out):
         return _run_refusal(law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out)
     # what the panel shows of the run
     _pose_error(q_out, x, data[_H_PLANT + DP_A1], data[_H_PLANT + DP_A2], data[_H_PLANT + DP_D0], qdd_out, e)
-    if not _run_figures(e, tau_out, n, dt, data[_H_SETTLE], data[_H_REST], pos, out):
-        out[_O_DURATION] = (n - 1) * dt
-        return _R_SHORT
-    out[_O_MAXP_MM] = 1e3 * out[_O_MAXP]
-    out[_O_FINALP_MM] = 1e3 * out[_O_FINALP]
-    out[_O_PEAK_F3] = out[_O_PEAK + 2]
-    out[_O_DURATION] = (n - 1) * dt
-    out[_O_DT_MS] = 1e3 * dt
-    out[_O_NOT_COMPENSATED] = 1.0 if out[_O_FINALP] > 1e-3 else 0.0
+    code = run_outputs(law, n, dt, e, tau_out, sig_out, pos, t, data, out)
+    if code != 0:
+        return code
     out[_O_SHOWN + law] = 1.0
     if law == ROBUST:
         out[_O_Z_SHOWN] = 1.0
@@ -819,7 +839,6 @@ def control_core(inputs, data, out):
     if law == NO_INTEGRAL:
         out[_O_STEADYZ_MM] = 1e3 * out[_O_STEADYZ]
         out[_O_THEORY_MM] = 1e3 * _theory_z(q_out[n - 1], model, plant, inputs[_I_KP])
-    _drawn(law, n, dt, int(data[_H_POINTS]), e, tau_out, sig_out, pos, t, data, out)
     return 0
 
 
@@ -931,6 +950,44 @@ def control_data(traj, p: ScaraParams | None = None, points: int = 600) -> np.nd
     data = np.concatenate([header, x.ravel(), xd.ravel(), xdd.ravel(), np.zeros(12 * n)])
     fill_joint_reference(data, np.zeros(SCALARS.size))
     return data
+
+
+def joint_reference_rows(data: np.ndarray) -> np.ndarray | None:
+    """The joint reference held in ``data`` (:func:`control_data`: the second-order CLIK of its trajectory, run
+    once) as the ``(N, 12)`` rows ``[q_d, qd_d, qdd_d]`` that :func:`scara.simulate` takes as its
+    ``joint_reference`` (a new array), or None when the reference was refused (its code is in the header)."""
+    if data[_H_JREF_CODE] != 0:
+        return None
+    n, at = int(data[_H_N]), int(data[_H_JREF])
+    blocks = [data[at + 4 * n * j:at + 4 * n * (j + 1)].reshape(n, 4) for j in range(3)]
+    return np.hstack(blocks)
+
+
+def own_run_outputs(result, data: np.ndarray, size: int) -> tuple:
+    """``(code, out)``: the outputs of the panel's program (:func:`control_outputs`, ``size`` entries) for a run of
+    a controller the program does not know (a :class:`~scara._simulate.SimulationResult` of :func:`scara.simulate`
+    on the trajectory of ``data``), made by the kernel that makes them for the program's own runs,
+    :func:`run_outputs` (the error ``result.e`` is the program's ``x_d - x_e``, by the same
+    :func:`~scara._simulate.result._pose_error`): the same figures, title, notes and arrays, the run's own signal
+    drawn as ``e_z``. ``code`` is 0 or the refusal code of :func:`control_refusals` (a run too short)."""
+    n = len(result.t)
+    if n != int(data[_H_N]):
+        raise ShapeError(f"the run holds {n} samples but the panel's trajectory {int(data[_H_N])}")
+    out = np.zeros(size)
+    e = np.ascontiguousarray(result.e, dtype=float)
+    tau = np.ascontiguousarray(result.tau, dtype=float)
+    code = int(run_outputs(OTHER_LAW, n, float(result.dt), e, tau, np.zeros((n, 1)), np.empty(n), np.empty(n),
+                           data, out))
+    if code == 0:
+        out[_O_EZ_SHOWN] = 1.0
+    return code, out
+
+
+def joint_reference_refusal(data: np.ndarray, size: int) -> tuple:
+    """``(code, out)`` of a joint reference that ``data`` holds as refused: its run again, with the numbers its
+    message (:func:`control_refusals`) names written in ``out`` (the program's outputs, ``size`` entries)."""
+    out = np.zeros(size)
+    return int(fill_joint_reference(data.copy(), out)), out
 
 
 #: a stand-in for a number field written into a text field (replaced once the text is in)

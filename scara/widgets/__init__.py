@@ -1,7 +1,11 @@
 """ipywidgets panels for tuning live in Jupyter: the only part of the package that imports ipywidgets.
 
 One sub-module per chapter; their panel builders are re-exported here. Each panel shows the package's error
-message in place of the plot when a setting is invalid, never a traceback.
+message in place of the plot when a setting is invalid, never a traceback; a number typed beside a slider
+outside its range is refused the same way, never clamped. Every builder takes ``keep=True``: re-running its cell
+starts from the last accepted settings of the previous panel of its kind. ``control_panel`` also runs the
+reader's own controllers (``controllers={label: class or factory}``) and the waypoint editor's plan
+(``control_panel(editor)``).
 """
 from .kinematics import inverse_kinematics_panel, kinematics_panel
 from .manipulability import manipulability_panel

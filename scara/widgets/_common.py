@@ -4,7 +4,11 @@ line, figures that redraw in place, a table.
 A panel is declared once, as data, in :mod:`scara.plots.panels` (:class:`~scara.plots.panels.Panel`): its
 controls, ``compute(settings) -> state`` (the robotics, in compiled code; it raises
 :class:`~scara.errors.ScaraError` for a setting the package refuses), its figures as builder/update pairs and
-its summary table. :class:`LivePanel` builds the ipywidgets from the controls table (:func:`build_control`).
+its summary table. :class:`LivePanel` builds the ipywidgets from the controls table (:func:`build_control`). A
+slider is a :class:`NumberSlider`, a slider with a number box beside it (the page panel's range and number
+inputs): a number typed outside the slider's range is refused with the page panel's message, like any refused
+setting, never clamped. A panel built with ``keep=True`` starts from the last accepted settings of the previous
+panel of its kind (a re-run cell keeps what was set in it).
 
 The figures are shown as plotly ``FigureWidget`` objects created once, from the builders, when the panel is
 built. On every change each pair's update (trace data and titles keyed by role or name) is applied to the figure
@@ -26,14 +30,15 @@ from contextlib import contextmanager
 import ipywidgets as ipw
 import numpy as np
 import plotly.graph_objects as go
+import traitlets
 from plotly.basedatatypes import Undefined
 
-from ..errors import ScaraError
+from ..errors import ScaraError, check_flag
 from ..plots.layout import without_template
 from ..plots.panels import Control, Panel, apply_update, start_value
 
-__all__ = ["LivePanel", "build_control", "table", "readable", "start_value", "trajectory_arg", "LABEL_STYLE",
-           "STALE_TITLE", "REFUSED"]
+__all__ = ["LivePanel", "NumberSlider", "build_control", "table", "readable", "start_value", "trajectory_arg",
+           "LABEL_STYLE", "STALE_TITLE", "REFUSED", "SLIDER_DIGITS"]
 
 #: the style of every control: its description shown in full, not cut to a fixed width
 LABEL_STYLE = {"description_width": "initial"}
@@ -42,6 +47,10 @@ LABEL_STYLE = {"description_width": "initial"}
 STALE_TITLE = "Not current: this setting was refused (see the message above)"
 #: the words before a refusal's message
 REFUSED = "Cannot show this setting:"
+
+#: the last panel of each kind built in this process (``declaration.widget`` or ``name`` -> LivePanel), whose
+#: accepted settings a panel built with ``keep=True`` starts from
+_LATEST: dict = {}
 
 #: style shared by every panel: a stale figure is greyed out as well as emptied
 _STYLE = """<style>
@@ -154,23 +163,134 @@ def _structure(state: dict) -> list:
     return [t.get("type", "scatter") for t in state["data"]]
 
 
+#: the significant digits of a slider's position as a value (:class:`NumberSlider`): a log slider's steps of 0.01
+#: decade stay distinct, and the number fits the box beside it
+SLIDER_DIGITS = 6
+
+
+def _digits(v: float) -> float:
+    """``v`` to :data:`SLIDER_DIGITS` significant digits (a value that is not finite as it is)."""
+    return float(f"{v:.{SLIDER_DIGITS}g}") if math.isfinite(v) else v
+
+
+class NumberSlider(ipw.HBox):
+    """A slider with a number box beside it, which never clamps: the Jupyter form of a ``"slider"``
+    :class:`~scara.plots.panels.Control` (as the page panel's range input beside its number input).
+
+    ``value`` is the control's value (a float), what the panel reads. Moving the slider sets it and writes the
+    box; a number typed in the box sets it as typed and, when it lies in the control's range ``[low, high]``,
+    moves the slider there; outside the range the slider stays where it was, and the panel, seeing a value
+    outside the range, refuses it with :func:`~scara.plots.panels.range_template`'s message. Setting ``value``
+    from Python does the same (the box shows it, the slider follows when it is in range): nothing is clamped.
+    (An ipywidgets slider's own readout clamps what is typed into it in the browser, before the kernel sees it:
+    it is not shown.)
+
+    A position of the slider gives its value to :data:`SLIDER_DIGITS` significant digits (a log slider's
+    ``10 ** 1.96`` is 91.2011), so that the box shows the very number the panel computes with; a typed value or
+    one set from Python is taken as it is (the box shows it to those digits).
+
+    ``slider`` (a ``FloatSlider``, or a ``FloatLogSlider`` on a log scale, without its readout) and ``box`` (a
+    ``FloatText``) are the two parts; ``disabled`` disables both; ``description`` is the slider's label, ``min``,
+    ``max`` and ``step`` the control's range (in its unit, on a log scale too) and step.
+    """
+
+    value = traitlets.CFloat()
+    disabled = traitlets.Bool(False)
+
+    def __init__(self, c: Control):
+        common = dict(continuous_update=False, readout=False, description=c.label, style=LABEL_STYLE,
+                      layout=ipw.Layout(width="auto", flex="1 1 auto", min_width="0"))
+        if c.scale == "log":
+            slider = ipw.FloatLogSlider(value=c.default, base=10, min=math.log10(c.low), max=math.log10(c.high),
+                                        step=c.step, **common)
+        else:
+            slider = ipw.FloatSlider(value=c.default, min=c.low, max=c.high, step=c.step, **common)
+        box = ipw.FloatText(value=_digits(c.default), step=c.step if c.scale == "linear" else None,
+                            continuous_update=False, layout=ipw.Layout(width="8.5em", flex="0 0 auto"))
+        super().__init__([slider, box], value=c.default, layout=ipw.Layout(width="100%", align_items="center"))
+        self.add_class("scara-slider")
+        self.control = c
+        self.slider, self.box = slider, box
+        self._source = None  # the part whose change is being passed on (the others do not echo it)
+        slider.observe(self._slid, names="value")
+        box.observe(self._typed, names="value")
+        self.observe(self._follow, names="value")
+        self.observe(self._disable, names="disabled")
+
+    @property
+    def description(self) -> str:
+        """The slider's label (the control's ``label``)."""
+        return self.slider.description
+
+    @property
+    def min(self) -> float:
+        """The lower end of the control's range (``low``, in its unit; on a log scale too)."""
+        return self.control.low
+
+    @property
+    def max(self) -> float:
+        """The upper end of the control's range (``high``, in its unit; on a log scale too)."""
+        return self.control.high
+
+    @property
+    def step(self) -> float:
+        """The slider's step (in the control's unit, in decades on a log scale)."""
+        return self.control.step
+
+    def in_range(self, v) -> bool:
+        """Whether ``v`` lies in the control's range ``[low, high]``."""
+        return self.control.low <= v <= self.control.high
+
+    @contextmanager
+    def _from(self, source: str):
+        self._source = source
+        try:
+            yield
+        finally:
+            self._source = None
+
+    def _slid(self, change):
+        if self._source is None:
+            v = _digits(change["new"])
+            if not self.in_range(v):
+                # a position at an end of the range: the end itself (a log slider's 10 ** log10(high) may differ
+                # from high by its last bit, and the slider cannot leave its range)
+                v = min(max(change["new"], self.control.low), self.control.high)
+            with self._from("slider"):
+                self.value = v
+
+    def _typed(self, change):
+        if self._source is None:
+            with self._from("box"):
+                self.value = change["new"]
+
+    def _follow(self, change):
+        """The value changed (by a part, or from Python): the other parts show it; the slider only in range."""
+        v = change["new"]
+        source = self._source
+        with self._from(source or "value"):
+            if source != "box":
+                self.box.value = _digits(v)
+            if source != "slider" and self.in_range(v):
+                self.slider.value = v
+
+    def _disable(self, change):
+        self.slider.disabled = self.box.disabled = change["new"]
+
+
 def build_control(c: Control):
-    """The ipywidget of the control ``c``: a ``FloatSlider`` (or ``FloatLogSlider`` on a log scale), a
-    ``Dropdown``, a ``FloatText`` or a ``Checkbox``, labelled ``c.label``, starting at ``c.default``."""
+    """The ipywidget of the control ``c``: a :class:`NumberSlider` (a slider and a number box, never clamping), a
+    ``Dropdown``, a ``FloatText`` or a ``Checkbox``, labelled ``c.label``, starting at ``c.default``; each has a
+    ``value`` and ``disabled``."""
     common = dict(description=c.label, style=LABEL_STYLE)
     if c.kind == "dropdown":
         return ipw.Dropdown(options=list(c.options), value=c.default, **common)
     if c.kind == "toggle":
         return ipw.Checkbox(value=c.default, **common)
-    common["continuous_update"] = False
     if c.kind == "number":
-        return ipw.FloatText(value=c.default, step=c.step, layout=ipw.Layout(width="180px"), **common)
-    if c.readout:
-        common["readout_format"] = c.readout
-    if c.scale == "log":
-        return ipw.FloatLogSlider(value=c.default, base=10, min=math.log10(c.low), max=math.log10(c.high), step=c.step,
-                                  **common)
-    return ipw.FloatSlider(value=c.default, min=c.low, max=c.high, step=c.step, **common)
+        return ipw.FloatText(value=c.default, step=c.step, layout=ipw.Layout(width="180px"), continuous_update=False,
+                             **common)
+    return NumberSlider(c)
 
 
 class LivePanel:
@@ -182,14 +302,28 @@ class LivePanel:
         The panel (:class:`~scara.plots.panels.Panel`): its controls become ipywidgets (:func:`build_control`),
         ``declaration.compute`` is called with the controls' values by name, each figure pair draws one figure.
 
-    The initial values must be valid: a panel built on a refused setting raises that :class:`ScaraError`.
-    Attributes a test or a notebook may read: ``declaration``, ``controls`` (name -> ipywidget), ``figures``
-    (the ``FigureWidget`` objects), ``last_error`` (the message shown, or None), ``state`` (the last valid
-    computation), ``timings`` (seconds spent in ``compute``, ``draw`` and sending the update, for the last
-    change), ``redraws`` (figure updates sent so far). ``compute`` may be replaced (a test counts its calls).
+    keep : bool
+        Start from the last accepted settings of the previous panel of the same kind (the same
+        ``declaration.widget``, else ``declaration.name``) built in this Python process: re-running a panel's
+        cell keeps what was set in it. Only the settings this panel can take are kept (a dropdown's choice it
+        does not offer is not); kept settings it refuses (a value outside a slider's range, a setting its
+        computation refuses) are shown refused, with their message, over a panel built on its own start values.
+        Without a previous panel, or with ``keep=False`` (the default), the panel starts from its declaration.
+
+    Every slider control's value must lie in its range (``low`` to ``high``): a value outside it, typed in its
+    number box or set from Python, is refused with :func:`~scara.plots.panels.range_template`'s message (the
+    page panel's), like any refused setting; nothing is clamped. The initial values must be valid: a panel
+    built on a refused setting raises that :class:`ScaraError`.
+    Attributes a test or a notebook may read: ``declaration``, ``controls`` (name -> ipywidget: a
+    :class:`NumberSlider`, a ``Dropdown``, a ``FloatText`` or a ``Checkbox``, each with a ``value``),
+    ``figures`` (the ``FigureWidget`` objects), ``last_error`` (the message shown, or None), ``state`` (the
+    last valid computation), ``accepted`` (the settings it was made for), ``timings`` (seconds spent in
+    ``compute``, ``draw`` and sending the update, for the last change), ``redraws`` (figure updates sent so
+    far). ``compute`` may be replaced (a test counts its calls).
     """
 
-    def __init__(self, declaration: Panel):
+    def __init__(self, declaration: Panel, keep: bool = False):
+        keep = check_flag(keep, "keep")
         self.declaration = declaration
         self.controls = {c.name: build_control(c) for c in declaration.controls}
         self.compute = declaration.compute
@@ -206,7 +340,17 @@ class LivePanel:
         self._stale = False
         self._seq = 0
 
-        state = self._compute(self.values())  # raises for an invalid start: nothing silently clamped
+        kind = declaration.widget or declaration.name
+        kept = self._keepable(_LATEST.get(kind)) if keep else {}
+        self._set_quietly(kept)
+        try:
+            state = self._start(self.values())  # raises for an invalid start: nothing silently clamped
+            kept = {}  # taken as they are
+        except ScaraError:
+            if not kept:
+                raise
+            self._set_quietly(declaration.defaults())  # kept settings refused: shown refused, below
+            state = self._start(self.values())
         self._states = [_widget_safe(pair.build(state).to_plotly_json()) for pair in declaration.figures]
         self.timings["draw"] = time.perf_counter() - self._t
         self.figures = [go.FigureWidget(s) for s in self._states]
@@ -227,6 +371,56 @@ class LivePanel:
         head = ipw.HTML(_STYLE + (f"<b>{html.escape(title)}</b>" if title else ""))
         self.widget = ipw.VBox([head, grid, self.message, *self._boxes, self.notes, self.info])
         self.widget.add_class("scara-panel")
+        _LATEST[kind] = self
+        if kept:
+            with self.hold():
+                for name, value in kept.items():
+                    self.controls[name].value = value
+
+    # ------------------------------------------------------------------------------------------------------
+    def _keepable(self, previous) -> dict:
+        """The accepted settings of the ``previous`` panel of this kind that this panel can take."""
+        if previous is None:
+            return {}
+        out = {}
+        for c in self.declaration.controls:
+            if c.name not in previous.accepted:
+                continue
+            v = previous.accepted[c.name]
+            if c.kind == "dropdown":
+                ok = any(v == x and type(v) is type(x) for x in c.values)
+            elif c.kind == "toggle":
+                ok = isinstance(v, bool)
+            else:
+                ok = isinstance(v, (int, float)) and not isinstance(v, bool)
+            if ok:
+                out[c.name] = v
+        return out
+
+    def _set_quietly(self, settings: dict) -> None:
+        """Set controls before the panel observes them (no computation)."""
+        for name, value in settings.items():
+            self.controls[name].value = value
+
+    def _outside(self, values: dict) -> str | None:
+        """The message of the first slider whose value lies outside its range (:func:`start_value`'s, the
+        page panel's :func:`~scara.plots.panels.range_template`), or None."""
+        for c in self.declaration.controls:
+            if c.kind == "slider":
+                try:
+                    start_value(values[c.name], c.low, c.high, c.name, c.unit, c.limit)
+                except ScaraError as exc:
+                    return str(exc)
+        return None
+
+    def _start(self, values: dict):
+        """The computation of the start ``values``: :class:`ScaraError` for a refused one."""
+        outside = self._outside(values)
+        if outside is not None:
+            raise ScaraError(outside)
+        state = self._compute(values)
+        self.accepted = dict(values)
+        return state
 
     # ------------------------------------------------------------------------------------------------------
     def values(self) -> dict:
@@ -270,8 +464,13 @@ class LivePanel:
         return state
 
     def update(self) -> None:
-        """Recompute for the controls' values and redraw in place, or show why the setting is refused."""
+        """Recompute for the controls' values and redraw in place, or show why the setting is refused (a slider's
+        value outside its range, or a setting the computation refuses)."""
         values = self.values()
+        outside = self._outside(values)
+        if outside is not None:
+            self._refuse(outside)
+            return
         try:
             state = self._compute(values)
             # the template went with the first figures; only what changes is sent from now on
@@ -289,6 +488,7 @@ class LivePanel:
         self.last_error = None
         self._stale = False
         self.message.value = ""
+        self.accepted = dict(values)
         self._show_text(state)
 
     def _values_html(self) -> str:
@@ -366,13 +566,17 @@ class LivePanel:
 
 
 def trajectory_arg(traj, p):
-    """``traj`` (a :class:`~scara.trajectory.Trajectory`), or the 70 s reference of chapter 3 when it is None;
-    anything else raises :class:`ScaraError`."""
+    """``traj`` (a :class:`~scara.trajectory.Trajectory`); the last accepted plan of a waypoint editor
+    (:func:`~scara.widgets.waypoint_editor`: its ``trajectory``); or the 70 s reference of chapter 3 when it is
+    None; anything else raises :class:`ScaraError`."""
     from ..trajectory import Trajectory, reference_trajectory  # noqa: PLC0415 - built on demand
+    from .trajectory import EditorState  # noqa: PLC0415 - it builds on this module
 
     if traj is None:
         return reference_trajectory(p=p)
+    if isinstance(traj, EditorState):
+        return traj.trajectory
     if not isinstance(traj, Trajectory):
-        raise ScaraError(f"traj must be a Trajectory (from plan_path or reference_trajectory) or None, "
-                         f"got {type(traj).__name__} {traj!r:.80}")
+        raise ScaraError(f"traj must be a Trajectory (from plan_path or reference_trajectory), a waypoint editor or "
+                         f"None, got {type(traj).__name__} {traj!r:.80}")
     return traj

@@ -79,7 +79,7 @@ def clik_declaration(traj=None, p=None, points: int = 800) -> Panel:
                          explain=lambda exc, values: str(exc), selector="method", roles={"clik": CLIK_PANEL_ROLES})
 
 
-def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
+def clik_panel(traj=None, p=None, points: int = 800, keep: bool = False) -> LivePanel:
     """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
     ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain
     ``k0`` and relaxed component of the pseudo-inverse (greyed out for the other methods). Each change re-runs
@@ -90,6 +90,8 @@ def clik_panel(traj=None, p=None, points: int = 800) -> LivePanel:
     package refuses (a gain past a stability limit, a run that diverges) are reported in the panel.
 
     ``points`` (samples per curve) runs from 2 to 10 000 (``scara.plots._common.MAX_POINTS``); outside, or not a
-    whole number, or ``traj`` not a Trajectory, raises :class:`ScaraError` before any run. Its ``declaration``
-    is :func:`clik_declaration`."""
-    return LivePanel(clik_declaration(traj, p, points))
+    whole number, or ``traj`` not a Trajectory (or a waypoint editor: its last accepted plan), raises
+    :class:`ScaraError` before any run. ``keep=True`` starts from the last accepted settings of the previous CLIK
+    panel built in this Python process (see :class:`~scara.widgets._common.LivePanel`). Its ``declaration`` is
+    :func:`clik_declaration`."""
+    return LivePanel(clik_declaration(traj, p, points), keep=keep)

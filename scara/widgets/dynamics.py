@@ -48,10 +48,11 @@ def dynamics_declaration(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), 
 
 
 def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: float = 10000.0,
-                   p=None) -> LivePanel:
+                   p=None, keep: bool = False) -> LivePanel:
     """Sliders for the payload mass (kg), theta1, theta2, theta4 (degrees), d3 (m) and the PD gain ``K_P3``
     (N/m); redraws ``B(q)`` with the make-up of its diagonal and lists its eigenvalues, ``g(q)`` and the
     quill's steady-state sag ``m_L g0 / K_P3`` under PD plus gravity with a payload-free model.
-    Only theta2 and the payload change ``B``: moving the other sliders shows it. Its ``declaration`` is
-    :func:`dynamics_declaration`."""
-    return LivePanel(dynamics_declaration(payload, q, K_P3, p))
+    Only theta2 and the payload change ``B``: moving the other sliders shows it. ``keep=True`` starts from the last
+    accepted settings of the previous inertia panel built in this Python process (see
+    :class:`~scara.widgets._common.LivePanel`). Its ``declaration`` is :func:`dynamics_declaration`."""
+    return LivePanel(dynamics_declaration(payload, q, K_P3, p), keep=keep)

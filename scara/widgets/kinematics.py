@@ -42,18 +42,20 @@ def kinematics_declaration(q=None, p=None) -> Panel:
                          {pair.role: pair.build}, widget="kinematics_panel")
 
 
-def kinematics_panel(q=None, p=None) -> LivePanel:
+def kinematics_panel(q=None, p=None, keep: bool = False) -> LivePanel:
     """A slider per joint (theta1, theta2, theta4 in degrees, d3 in metres); on every move the 3-D arm with
     its frames is redrawn in place and ``x_e`` (1.6), ``det J_A`` and ``w`` are listed.
 
     ``q`` is the starting configuration (4,) in rad, rad, m, rad (default ``[0, 60°, mid-stroke, 0]``); angles must lie
     in [-180°, 180°] and d3 in the quill's stroke ``p.d3_min`` to ``p.d3_max``, the sliders' ranges, or
     :class:`ScaraError` is raised (naming the value and the range).
-    Every slider position is a valid configuration, so this panel never refuses a setting.
+    Every slider position is a valid configuration, so this panel refuses only a number typed beside a slider
+    outside its range. ``keep=True`` starts from the last accepted settings of the previous direct-kinematics
+    panel built in this Python process (re-running the cell keeps the joints set): see :class:`LivePanel`.
     Returns a :class:`LivePanel` (display it as a cell's last expression); its ``declaration`` is
     :func:`kinematics_declaration`.
     """
-    return LivePanel(kinematics_declaration(q, p))
+    return LivePanel(kinematics_declaration(q, p), keep=keep)
 
 
 def _refusals(p) -> dict:
@@ -100,11 +102,12 @@ def inverse_kinematics_declaration(x=None, p=None) -> Panel:
     return panel
 
 
-def inverse_kinematics_panel(x=None, p=None) -> LivePanel:
+def inverse_kinematics_panel(x=None, p=None, keep: bool = False) -> LivePanel:
     """Type a target ``p_x, p_y, p_z`` (m) and ``phi`` (degrees); both closed-form solutions (elbow +1 and
     -1) are drawn from above and listed. A target outside the workspace shows why, in metres and degrees,
     and the figure is marked stale until a reachable target is typed. ``x`` is the starting target (4,) in
     m, m, m, rad (default the first point of the reference path of chapter 3, ``p0 = (0.18, 0.20, 0.5)`` m,
-    with ``phi = 0``); an unreachable start raises :class:`UnreachableError`. Its ``declaration`` is
-    :func:`inverse_kinematics_declaration`."""
-    return LivePanel(inverse_kinematics_declaration(x, p))
+    with ``phi = 0``); an unreachable start raises :class:`UnreachableError`. ``keep=True`` starts from the last
+    accepted target of the previous inverse-kinematics panel built in this Python process (see
+    :class:`LivePanel`). Its ``declaration`` is :func:`inverse_kinematics_declaration`."""
+    return LivePanel(inverse_kinematics_declaration(x, p), keep=keep)

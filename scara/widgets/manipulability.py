@@ -45,12 +45,14 @@ def manipulability_declaration(theta1: float = 0.0, theta2: float = math.pi / 3,
                          columns=3)
 
 
-def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15, p=None) -> LivePanel:
+def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15, p=None,
+                         keep: bool = False) -> LivePanel:
     """Sliders for theta1 and theta2 (degrees) and the ellipse scale (metres drawn per m/s and per N); the
     top view of the arm with its horizontal velocity and force ellipses is redrawn in place on every move, with
     ``w`` and the semi-axes listed. The starting angles are given here in rad (within [-180°, 180°]) and the
     scale within (0, 0.5]; values outside these ranges raise :class:`ScaraError`. A scale of 0 set on the
     slider is refused in the panel. At a singular configuration the force ellipse is unbounded: the table lists
-    its long semi-axis as ``inf`` instead of a huge number, and a note says why. Its ``declaration`` is
-    :func:`manipulability_declaration`."""
-    return LivePanel(manipulability_declaration(theta1, theta2, scale, p))
+    its long semi-axis as ``inf`` instead of a huge number, and a note says why. ``keep=True`` starts from the last
+    accepted settings of the previous ellipses panel built in this Python process (see
+    :class:`~scara.widgets._common.LivePanel`). Its ``declaration`` is :func:`manipulability_declaration`."""
+    return LivePanel(manipulability_declaration(theta1, theta2, scale, p), keep=keep)

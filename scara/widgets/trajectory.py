@@ -162,13 +162,23 @@ class EditorState:
 
 
 
+#: the last waypoint editor built in this process, whose plan an editor built with ``keep=True`` starts from
+_LATEST: list = []
+
+
 class WaypointEditor(EditorState):
     """The editor's state (:class:`EditorState`: ``plan``, ``trajectory``, ``declaration``) and its
-    :class:`LivePanel` (``panel``); displayed as a cell's last expression, it shows the panel."""
+    :class:`LivePanel` (``panel``); displayed as a cell's last expression, it shows the panel. ``keep=True``
+    starts from the last accepted plan of the previous editor built in this process, and from its controls'
+    last accepted settings (see :func:`waypoint_editor`)."""
 
-    def __init__(self, plan: dict | None = None, profiles: bool = True):
+    def __init__(self, plan: dict | None = None, profiles: bool = True, keep: bool = False):
+        keep = check_flag(keep, "keep")
+        if keep and _LATEST:
+            plan = _LATEST[0].plan
         super().__init__(plan, profiles)
-        self.panel = LivePanel(self.declaration)
+        self.panel = LivePanel(self.declaration, keep=keep)
+        _LATEST[:] = [self]
 
     def _repr_mimebundle_(self, include=None, exclude=None):
         return self.panel._repr_mimebundle_(include=include, exclude=exclude)
@@ -282,12 +292,23 @@ def editor_refusals() -> dict:
     return {code: Text(text) for code, text in t.items()}
 
 
-def waypoint_editor(plan: dict | None = None, profiles: bool = True) -> WaypointEditor:
+def waypoint_editor(plan: dict | None = None, profiles: bool = True, keep: bool = False) -> WaypointEditor:
     """A live waypoint editor on ``plan`` (default: the reference scenario of chapter 3).
 
     Controls: the waypoint to edit and its x/y/z (m), via or stop and the anticipation (s), the segment to
     edit and its duration (s). Every change re-plans the path and redraws the top view (and, with
     ``profiles``, the time profiles) in place; an invalid edit shows the planner's message instead and marks
-    the figures stale. Display the returned object as a cell's last expression.
+    the figures stale; so does a number typed beside a slider outside its range (never clamped). Display the
+    returned object as a cell's last expression.
+
+    ``editor.trajectory`` is the last accepted plan (a :class:`~scara.trajectory.Trajectory`) and ``editor.plan``
+    its arguments of :func:`~scara.trajectory.plan_path`: hand the editor, or its trajectory, to
+    :func:`~scara.widgets.control_panel` or :func:`~scara.widgets.clik_panel` (``control_panel(editor)``) to run
+    the controllers or the CLIK on the path edited.
+
+    ``keep=True`` starts, when this Python process has built an editor before, from that editor's last accepted
+    plan (all its edits; ``plan`` is then used only when there was none) and its picked waypoint and segment:
+    re-running the cell keeps the path edited. Raises :class:`ScaraError` for an invalid ``plan`` or a
+    ``profiles`` or ``keep`` that is not a bool.
     """
-    return WaypointEditor(plan, profiles)
+    return WaypointEditor(plan, profiles, keep)

@@ -242,6 +242,7 @@ def test_a_chapter_that_opens_with_a_check_loads_the_magic_first():
     nb = _nb(("markdown", "# T", {}), ("code", "assert True", {"tags": ["remove-cell"]}), ("code", "x = 1", {}))
     code = [c["source"] for c in lab_copy.lab_notebook(nb, _resolver(), {})["cells"] if c["cell_type"] == "code"]
     assert code == [lab_copy.LOAD_MAGIC, "%%book_check\nassert True", "x = 1"]
+    assert lab_copy.lab_notebook(nb, _resolver(), {})["cells"][1]["id"] == "scara-book-load"
 
 
 def test_a_markdown_page_reads_as_the_book():

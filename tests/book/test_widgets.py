@@ -18,7 +18,7 @@ from scara.widgets import (  # noqa: E402
     clik_panel, control_panel, dynamics_panel, inverse_kinematics_panel, kinematics_panel, manipulability_panel,
     waypoint_editor,
 )
-from scara.widgets._common import STALE_TITLE, _delta, _same, readable  # noqa: E402
+from scara.widgets._common import STALE_TITLE, NumberSlider, _delta, _same, readable  # noqa: E402
 
 
 class Spy:
@@ -454,12 +454,19 @@ def test_panels_are_built_from_their_declaration(name, build, move):
     for c in d.controls:
         w = panel.controls[c.name]
         assert w.description == c.label and (c.unit in c.label or c.name == "scale"), c
-        if c.kind == "slider" and c.scale == "log":
-            assert type(w) is ipw.FloatLogSlider and w.base == 10 and w.step == c.step
-            assert (w.min, w.max) == pytest.approx((math.log10(c.low), math.log10(c.high)), abs=1e-12)
-            assert w.value == pytest.approx(c.default, rel=1e-12)
-        elif c.kind == "slider":
-            assert type(w) is ipw.FloatSlider and (w.min, w.max, w.step, w.value) == (c.low, c.high, c.step, c.default)
+        if c.kind == "slider":  # a slider without its (clamping) readout and a number box beside it
+            assert type(w) is NumberSlider and (w.min, w.max, w.step, w.value) == (c.low, c.high, c.step, c.default)
+            s = w.slider
+            if c.scale == "log":
+                assert type(s) is ipw.FloatLogSlider and s.base == 10 and s.step == c.step
+                assert (s.min, s.max) == pytest.approx((math.log10(c.low), math.log10(c.high)), abs=1e-12)
+                assert s.value == pytest.approx(c.default, rel=1e-12)
+            else:
+                assert type(s) is ipw.FloatSlider and (s.min, s.max, s.step, s.value) == (c.low, c.high, c.step,
+                                                                                          c.default)
+            assert s.readout is False and s.description == c.label and s.continuous_update is False
+            assert type(w.box) is ipw.FloatText and w.box.value == float(f"{c.default:.6g}")
+            assert s.disabled == w.box.disabled == w.disabled
         elif c.kind == "dropdown":
             assert type(w) is ipw.Dropdown and w.value == c.default
             assert tuple(o[1] if isinstance(o, tuple) else o for o in w.options) == c.values
@@ -467,8 +474,6 @@ def test_panels_are_built_from_their_declaration(name, build, move):
             assert type(w) is ipw.FloatText and (w.value, w.step) == (c.default, c.step)
         else:
             assert type(w) is ipw.Checkbox and w.value == c.default
-        if c.readout:
-            assert w.readout_format == c.readout
         assert w.disabled == (not d.applies(c, d.defaults()))
 
     start = d.compute(d.defaults())
