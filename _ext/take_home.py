@@ -9,7 +9,8 @@ The zip holds one folder, ``scara-course/``: the chapters (``book/*.ipynb`` as J
 ``lab_copy`` from the sources and the numbers the build gave every label: glued numbers as inline expressions,
 captions, references as links with the book's text, outputs cleared; ``book/*.md``), the package (``scara/``
 without ``__pycache__``), ``pyproject.toml``, ``requirements.txt`` (whose ``-e .`` installs the package from the
-unpacked folder), ``references.bib`` and a README (``take_home/README.md``) whose one command installs everything
+unpacked folder), ``references.bib``, the benchmarks' stored results (``benchmarks/results.json``, which the
+verification appendix reads) and a README (``take_home/README.md``) whose one command installs everything
 and opens the chapters in JupyterLab. The book's configuration stays out: the book is built from the sources.
 """
 from __future__ import annotations
@@ -49,6 +50,7 @@ def _members(root: Path, notebooks: dict[str, bytes | None] | None = None) -> di
     files += [p for p in sorted((root / "scara").rglob("*")) if p.is_file()]
     # the course, not the book's build: its chapters are the JupyterLab copies, which the book does not build from
     files += [root / n for n in ("pyproject.toml", "requirements.txt", "references.bib")]
+    files += [root / "benchmarks" / "results.json"]  # the verification appendix reads the stored comparison
     out: dict[str, bytes] = {}
     for p in files:
         rel = p.relative_to(root)

@@ -219,8 +219,10 @@ def test_an_edited_chapter_runs_to_the_end_and_its_numbers_follow(name, copies, 
         "import json as _j\n_out = {}\nfor _e in %r:\n    try:\n        _out[_e] = str(eval(_e))\n"
         "    except Exception as _x:\n        _out[_e] = 'ERROR ' + repr(_x)\nprint(_j.dumps(_out))" % sorted(book))})
     node = nbformat.from_dict(nb)
+    with zipfile.ZipFile(ZIP) as zf:  # run in the unpacked course, beside the files the chapters read
+        zf.extractall(tmp_path)
     client = NotebookClient(node, timeout=600, kernel_name="python3", allow_errors=True,
-                            resources={"metadata": {"path": str(tmp_path)}})
+                            resources={"metadata": {"path": str(tmp_path / "scara-course" / "book")}})
     client.execute()
     errors = [f"cell {k} ({c.source.splitlines()[1 if c.source.startswith('%%') else 0][:60]!r}): "
               f"{o['ename']}: {o['evalue'][:200]}"
