@@ -13,6 +13,11 @@ and a kernel that needs an explicit signature (a first-class function argument) 
 :func:`signature_kernel`, which compiles that signature on its first call too. :func:`ensure_signature`
 compiles a lazy kernel for one given signature before it is passed as a first-class function.
 
+A kernel called from another kernel is compiled for the plain types of the call's arguments (``int64``, not the
+literal ``0`` the caller wrote), the types a call from Python gives it, so that one machine-code version serves
+every caller (:class:`_PlainCallsDispatcher`): numba would otherwise compile a kernel once more for each literal
+a caller passes (a controller's law for ``k = 0``, a program's refusal kernel for each of eight gain indices).
+
 The closed loop's contract with a controller's law is declared here once, beside :func:`kernel`: the flat
 arrays' fields (:class:`ArrayLayout`), the numba types of the compiled loops (:data:`VECTOR`, :data:`MATRIX`,
 :data:`LAW_DATA_TYPE`...), the law's signature :data:`LAW_SIGNATURE` and its decorator :func:`control_law`
@@ -74,9 +79,47 @@ def kernel(fn=None, **options):
     def wrap(f):
         if _numba is None:
             return f
-        return _numba.njit(cache=True, **options)(f)
+        return _plain_calls(_numba.njit(cache=True, **options)(f))
 
     return wrap if fn is None else wrap(fn)
+
+
+def _plain_calls(dispatcher):
+    """``dispatcher`` (a fresh numba dispatcher) made a :class:`_PlainCallsDispatcher` of its own class."""
+    cls = _PLAIN_CALLS.get(type(dispatcher))
+    if cls is None:
+        cls = _PLAIN_CALLS[type(dispatcher)] = type(f"PlainCalls{type(dispatcher).__name__}",
+                                                   (_PlainCallsDispatcher, type(dispatcher)), {})
+    dispatcher.__class__ = cls  # the same object and state: only the typing of calls from kernels changes
+    return dispatcher
+
+
+class _PlainCallsDispatcher:
+    """A numba dispatcher that a call from another kernel compiles for the plain (non-literal) types of its arguments.
+
+    When kernel ``f`` calls kernel ``g(x, 0)``, numba types the constant as ``Literal[int](0)`` and compiles ``g``
+    for it: a second machine-code version of ``g`` beside the ``int64`` one that ``g(x, k)`` or a call from Python
+    compiles, and one more per literal (8 versions of a kernel called with each of 8 constants). Each costs a full
+    compile of ``g``: chapter 6, run on an empty cache, compiled about thirty such versions.
+    Typed for ``int64`` instead, ``g`` runs the same operations on the same values, so its results are the same
+    bits (numba compiles without fast-math: LLVM folds no floating-point operation differently for a known
+    integer). A kernel that can only be typed with the literal (a heterogeneous tuple indexed by it) still gets
+    its literal version: when the plain types fail, the call is typed as numba types it.
+    """
+
+    def get_call_template(self, args, kws):
+        plain = tuple(_numba.types.unliteral(a) for a in args)
+        plain_kws = {k: _numba.types.unliteral(v) for k, v in kws.items()}
+        if plain != tuple(args) or plain_kws != kws:
+            try:
+                return super().get_call_template(plain, plain_kws)
+            except _numba.core.errors.NumbaError:
+                pass
+        return super().get_call_template(args, kws)
+
+
+#: the :class:`_PlainCallsDispatcher` class made for each numba dispatcher class
+_PLAIN_CALLS: dict = {}
 
 
 def signature_kernel(signature):
@@ -293,7 +336,7 @@ def control_law(fn):
     """
     if not COMPILED:
         return fn
-    return _numba.njit(cache=True, _nrt=False)(fn)
+    return _plain_calls(_numba.njit(cache=True, _nrt=False)(fn))
 
 
 def compiled_law(law):

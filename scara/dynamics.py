@@ -511,7 +511,9 @@ def inverse_dynamics(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
     if not (q.shape == qd.shape == qdd.shape):
         raise ShapeError(f"q, qd and qdd must have the same shape, got {q.shape}, {qd.shape}, {qdd.shape}")
     work = dynamics_workspace()
-    q, qd, qdd = (np.ascontiguousarray(a) for a in (q, qd, qdd))
+    # a trajectory's own series are read-only, which numba types apart: copied, they meet the kernels compiled for
+    # every other caller (the operational-space law) instead of compiling them once more
+    q, qd, qdd = (a if a.flags.writeable else a.copy() for a in (np.ascontiguousarray(a) for a in (q, qd, qdd)))
     if q.ndim == 1:
         out = np.empty(4)
         inverse_dynamics_kernel(q, qd, qdd, dp, work, out)

@@ -446,6 +446,8 @@ def ikine(x, p: ScaraParams | None = None, elbow: int = +1) -> np.ndarray:
     x = as_array(x, "x", (4,), allow_batch=True)
     batch = x.ndim == 2
     xs = x if batch else x[None, :]
+    if not xs.flags.writeable:  # a trajectory's own poses: numba would compile the kernels once more for them
+        xs = xs.copy()
     out = np.empty_like(xs)
     check_angles(x, "x", columns=(3,))
     k = ikine_batch_kernel(xs, p.a1, p.a2, p.d0, p.d3_min, p.d3_max, float(elbow), out)

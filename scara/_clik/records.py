@@ -63,8 +63,12 @@ _NO_ROWS = np.empty((0, 4))
 
 
 def _reference(x_d, xd_d, xdd_d=None) -> Reference:
-    """The :class:`Reference` record (``xdd`` empty for a first-order run)."""
-    return Reference(x_d, xd_d, _NO_ROWS if xdd_d is None else xdd_d)
+    """The :class:`Reference` record (``xdd`` empty for a first-order run), its arrays writable: a read-only one
+    (a trajectory's own, which it keeps read-only) is copied. numba types a read-only array apart, and the loops
+    would otherwise be compiled twice, once for a trajectory's arrays and once for computed ones (the joint
+    reference the controllers' page programs compute): the same values, the same results."""
+    rows = (x_d, xd_d, _NO_ROWS if xdd_d is None else xdd_d)
+    return Reference(*(a if a.flags.writeable else a.copy() for a in rows))
 
 
 def _first_order_law(dt, method, K, kept, lam2, w_thr, k0, objective, max_err) -> FirstOrderLaw:
