@@ -58,6 +58,19 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
+def stop_process_group(proc) -> None:
+    """End a server started with ``start_new_session=True`` and everything it started (its kernels): SIGTERM to
+    its process group, SIGKILL if it is still there after 20 s."""
+    try:
+        os.killpg(proc.pid, signal.SIGTERM)
+        proc.wait(timeout=20)
+    except (ProcessLookupError, subprocess.TimeoutExpired):
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
+
 @contextmanager
 def jupyterlab_server(notebooks=None, timeout: float = 90.0):
     """Start ``jupyter lab`` on a temporary copy of ``notebooks`` (default: every chapter and page of the book's
@@ -110,14 +123,7 @@ def jupyterlab_server(notebooks=None, timeout: float = 90.0):
             time.sleep(0.3)
         yield url
     finally:
-        try:
-            os.killpg(proc.pid, signal.SIGTERM)
-            proc.wait(timeout=20)
-        except (ProcessLookupError, subprocess.TimeoutExpired):
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        stop_process_group(proc)
         log.close()
         shutil.rmtree(tmp, ignore_errors=True)
 

@@ -24,7 +24,6 @@ import json
 import os
 import re
 import shutil
-import signal
 import socket
 import subprocess
 import sys
@@ -282,14 +281,9 @@ def _start_lab(course: Path, start: str, tmp: Path, timeout: float = 90.0) -> st
                     pytest.fail(f"`{start}` did not answer within {timeout:.0f} s:\n{log_path.read_text()[-3000:]}")
                 time.sleep(0.3)
         finally:
-            try:
-                os.killpg(proc.pid, signal.SIGTERM)
-                proc.wait(timeout=20)
-            except (ProcessLookupError, subprocess.TimeoutExpired):
-                try:
-                    os.killpg(proc.pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
+            from jupyterlab_driver import stop_process_group  # noqa: PLC0415 - beside this file
+
+            stop_process_group(proc)
     return log_path.read_text()
 
 
