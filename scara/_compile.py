@@ -18,6 +18,11 @@ literal ``0`` the caller wrote), the types a call from Python gives it, so that 
 every caller (:class:`_PlainCallsDispatcher`): numba would otherwise compile a kernel once more for each literal
 a caller passes (a controller's law for ``k = 0``, a program's refusal kernel for each of eight gain indices).
 
+A set-up kernel declared ``light`` (a few numbers checked or packed, a plan resolved segment by segment) runs
+as plain Python when called from Python, with every kernel it calls: a chapter on an empty cache no longer
+spends seconds compiling what runs in microseconds (the planner's ``build_plan`` took 6 s to compile and runs
+in 0.3 ms as Python). Called from another kernel it is compiled into it as usual.
+
 The closed loop's contract with a controller's law is declared here once, beside :func:`kernel`: the flat
 arrays' fields (:class:`ArrayLayout`), the numba types of the compiled loops (:data:`VECTOR`, :data:`MATRIX`,
 :data:`LAW_DATA_TYPE`...), the law's signature :data:`LAW_SIGNATURE` and its decorator :func:`control_law`
@@ -27,6 +32,7 @@ from __future__ import annotations
 
 import functools
 import os
+import threading
 
 try:  # pragma: no cover - depends on the environment
     if os.environ.get("SCARA_NO_NUMBA", "") == "1":
@@ -70,18 +76,35 @@ if _numba is not None and not os.environ.get("NUMBA_CACHE_DIR"):
     _numba.config.CACHE_DIR = str(_Path(__file__).resolve().parent / "__pycache__" / f"numba-{_source_digest()}")
 
 
-def kernel(fn=None, **options):
+def kernel(fn=None, *, light: bool = False, **options):
     """Compile ``fn`` with ``numba.njit(cache=True, **options)`` when numba is available.
 
     Use as ``@kernel`` or ``@kernel(fastmath=False)``. Without numba the function is returned as it is.
+
+    ``light=True`` declares a set-up kernel: a check or a packing of a few numbers, a plan resolved segment by
+    segment, work of microseconds whose compilation costs a second or more. Called from Python it runs as plain
+    Python (``py_func``), and so does every kernel it calls; called from another kernel it is compiled as part of
+    that kernel, as any kernel is. Its results are the same either way (the tests run every kernel both ways).
     """
 
     def wrap(f):
         if _numba is None:
             return f
-        return _plain_calls(_numba.njit(cache=True, **options)(f))
+        dispatcher = _plain_calls(_numba.njit(cache=True, **options)(f))
+        dispatcher.light = bool(light)
+        return dispatcher
 
     return wrap if fn is None else wrap(fn)
+
+
+class _PlainRun(threading.local):
+    """How deep the current thread is inside a plain-Python run of a :func:`kernel` (``light``, or called by
+    one): inside it every kernel called runs as plain Python."""
+
+    depth = 0
+
+
+_PLAIN_RUN = _PlainRun()
 
 
 def _plain_calls(dispatcher):
@@ -106,6 +129,24 @@ class _PlainCallsDispatcher:
     integer). A kernel that can only be typed with the literal (a heterogeneous tuple indexed by it) still gets
     its literal version: when the plain types fail, the call is typed as numba types it.
     """
+
+    #: True for a kernel made with ``kernel(light=True)``: a call from Python runs ``py_func``
+    light = False
+
+    def __call__(self, *args, **kws):
+        """A call from Python: the compiled kernel, or ``py_func`` for a light kernel and anything it calls."""
+        if _PLAIN_RUN.depth:
+            return self.py_func(*args, **kws)
+        if self.light:
+            import numpy as np  # noqa: PLC0415 - numba imports it anyway
+
+            _PLAIN_RUN.depth += 1
+            try:  # floating-point overflow gives inf as in the compiled kernel, whose checks report it: no warning
+                with np.errstate(all="ignore"):
+                    return self.py_func(*args, **kws)
+            finally:
+                _PLAIN_RUN.depth -= 1
+        return super().__call__(*args, **kws)
 
     def get_call_template(self, args, kws):
         plain = tuple(_numba.types.unliteral(a) for a in args)

@@ -112,7 +112,7 @@ LumpedParameters = namedtuple("LumpedParameters", ("m3", "ml2_l2", "beta11", "be
                                                    "beta14", "beta44", "F1", "F2", "F3", "F4"))
 
 
-@kernel
+@kernel(light=True)
 def lumped_parameters(dp):
     """The parameter vector ``pi`` of :data:`PI_NAMES` from the flat array ``dp``, as a
     :data:`LumpedParameters` record: the one place the lumped parameters are formed (chapter 5).
@@ -154,7 +154,7 @@ def lumped_parameters(dp):
         kr4 * kr4 * dp[DP_FM + 3])
 
 
-@kernel
+@kernel(light=True)
 def pi_kernel(dp, out):
     """The parameter vector ``pi`` (13,) of :data:`PI_NAMES` from the flat array ``dp``, into ``out``
     (the entries of :func:`lumped_parameters`)."""

@@ -504,7 +504,7 @@ def _quadratic_pole_radius(a, b):
     return math.sqrt(c0)
 
 
-@kernel
+@kernel(light=True)
 def _second_order_check(K_P, K_D, dt, res):
     """Jury's test of (4.19) on each component: with ``a = dt K_D``, ``b = dt^2 K_P`` both poles lie inside the
     unit circle iff ``b < a`` and ``2 a - b < 4``. Returns the first component that fails, or -1; for it
@@ -524,7 +524,7 @@ def _second_order_check(K_P, K_D, dt, res):
     return -1
 
 
-@kernel
+@kernel(light=True)
 def _initial_error_check(x0_ref, q0, a1, a2, d0, keep, max_err, res):
     """The kept component ``i`` with the largest initial error ``|x_d(0) - x_e(q0)|`` (1.5) when that error is
     above ``max_err`` (the error is written into ``res[RES_ERROR]``), or -1: a start the loop would stop at
@@ -545,7 +545,7 @@ def _initial_error_check(x0_ref, q0, a1, a2, d0, keep, max_err, res):
     return -1
 
 
-@kernel
+@kernel(light=True)
 def _damping_ceiling(r_max):
     """The largest damping ``lambda`` (m) of (4.15): :data:`MAX_DAMPING_REACH` times the reach ``r_max``."""
     return MAX_DAMPING_REACH * r_max

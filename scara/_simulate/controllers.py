@@ -41,7 +41,7 @@ def pd_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
     return OK
 
 
-@kernel
+@kernel(light=True)
 def pd_gravity_steady_state_kernel(model, plant, K_P3):
     """The quill's joint error ``q_d3 - q_3`` at rest under PD plus gravity compensation, where ``K_P e = g(q) -
     g_hat(q)`` (Siciliano et al. eq. 8.53 at rest): ``e_3 = (m3_hat g0_hat - m3 g0) / K_P3`` (m) with ``m3 = m_l3 +

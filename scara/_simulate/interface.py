@@ -272,7 +272,7 @@ def _trial(law, arrays, start, dt, fills):
     return code, bufs
 
 
-@_compile.kernel
+@_compile.kernel(light=True)
 def guard_change(buf, start, fill):
     """The index of the first entry of ``buf`` (1-D: a trial array followed by its guard entries) at or after
     ``start`` that is not ``fill``, or -1: where a law wrote past its declared size (:func:`check_law_bounds`; a NaN
@@ -283,7 +283,7 @@ def guard_change(buf, start, fill):
     return -1
 
 
-@_compile.kernel
+@_compile.kernel(light=True)
 def same_entries(a, b, n):
     """Whether the first ``n`` entries of ``a`` and ``b`` (1-D) are equal, a NaN equal to a NaN: two trial calls
     gave the same outputs (:func:`check_law_bounds`)."""

@@ -247,7 +247,7 @@ def _references(kind, traj, joint_reference, duration, dt, p):
 START_STROKE_MESSAGE = "q0: joint 3 (d3) = {d3:g} m is outside the quill's stroke [{d3_min:g}, {d3_max:g}] m"
 
 
-@kernel
+@kernel(light=True)
 def in_stroke(d3, d3_min, d3_max):
     """Whether the quill's ``d3`` (m) lies in its stroke ``[d3_min, d3_max]`` (a NaN does not): the check of a run's
     start (:func:`_start_state`)."""

@@ -50,7 +50,7 @@ FAILURE_CAUSES = {
 #: The last fields of every chapter-6 law's gain array (:class:`~scara._compile.ArrayLayout`): the stated bounds.
 BOUND_FIELDS = (("tau_max", 4), ("max_error", 1))
 
-@_compile.kernel
+@_compile.kernel(light=True)
 def torque_code(tau, gains, tau_max_at):
     """:data:`TORQUE_BOUND` when some ``|tau_i|`` exceeds its bound ``gains[tau_max_at + i]`` (or is not finite),
     :data:`OK` otherwise: the torque check of the chapter-6 laws, inside their compiled step."""

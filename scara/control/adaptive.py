@@ -69,7 +69,7 @@ FROZEN_MESSAGE = "K_pi freezes every parameter (all entries infinite): nothing w
 SMALL_WEIGHT_MESSAGE = "K_pi[{i}] = {K_pi:g} ({name}) is too small: its inverse, the adaptation rate, is not finite"
 
 
-@kernel
+@kernel(light=True)
 def adaptation_rates(K_pi, out):
     """``out = K_pi^-1`` (13,) for positive weights ``K_pi`` (13,; ``inf`` freezes a parameter, rate 0). Returns
     -1, :data:`FROZEN` when every entry is infinite (nothing adapts), or the first ``i`` whose rate ``1 / K_pi_i``
@@ -100,7 +100,7 @@ SIGNALS = ArrayLayout(("payload_estimate", 1), ("sigma_norm", 1))
 _S_PAYLOAD, _S_SIGMA = SIGNALS.offsets
 
 
-@kernel
+@kernel(light=True)
 def pack_gains(Lambda, K_D, K_pi_inv, tau_max, max_error, out):
     """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``Lambda``, ``K_D``, ``tau_max`` (4,),
     the rates ``K_pi_inv`` (13,) and ``max_error``: the one packer of :meth:`AdaptiveController.gains_array` and of

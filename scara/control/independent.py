@@ -136,7 +136,7 @@ ROUTH_MESSAGE = ("K_I[{i}] = {K_I:g} must be < (F + K_D) K_P / B_bar = {limit:g}
                  "polynomial B_bar s^3 + (F + K_D) s^2 + K_P s + K_I has roots in the right half-plane (Routh)")
 
 
-@kernel
+@kernel(light=True)
 def placed_gains(B_bar, omega, F, integral, K_P, K_D, K_I):
     """The pole placement (eq-ctl-ij-gains) into ``K_P``, ``K_D``, ``K_I`` (4,) from ``B_bar``, ``omega``, ``F``
     (4,): ``K_P = 3 omega^2 B_bar``, ``K_D = 3 omega B_bar - F``, ``K_I = omega^3 B_bar`` with ``integral`` (PID),
@@ -156,7 +156,7 @@ def placed_gains(B_bar, omega, F, integral, K_P, K_D, K_I):
     return -1
 
 
-@kernel
+@kernel(light=True)
 def joint_margin(F, K_P, K_D, K_I, B_bar, i):
     """The book's (eq-ctl-ij-margin) for joint ``i``: ``(F + K_D) K_P / K_I / B_bar`` with the integral (``K_I > 0``),
     ``inf`` without (see :meth:`IndependentJointController.inertia_margin`)."""
@@ -165,7 +165,7 @@ def joint_margin(F, K_P, K_D, K_I, B_bar, i):
     return math.inf
 
 
-@kernel
+@kernel(light=True)
 def margin_status(F, K_P, K_D, K_I, B_bar):
     """The first joint whose margin :func:`joint_margin` is not above 1 (its nominal loop is unstable: Routh), or -1."""
     for i in range(4):
@@ -187,7 +187,7 @@ SIGNALS = ArrayLayout(("integral_action", 4), ("saturated", 1))
 _S_IA, _S_SAT = SIGNALS.offsets
 
 
-@kernel
+@kernel(light=True)
 def pack_gains(B_bar, F, K_P, K_D, K_I, feedforward, saturation, anti_windup, tau_max, max_error, out):
     """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``B_bar``, ``F``, ``K_P``, ``K_D``,
     ``K_I``, ``tau_max`` (4,), the three flags (0.0 or 1.0) and ``max_error``: the one packer of

@@ -43,7 +43,7 @@ INTEGRAL_MESSAGE = ("K_I[{i}] = {K_I:g} must be < K_D[{i}] K_P[{i}] = {K_DK_P:g}
                     "K_P s + K_I has roots in the right half-plane (Routh)")
 
 
-@kernel
+@kernel(light=True)
 def integral_status(K_P, K_D, K_I):
     """The first component ``i`` (of 4) whose ``K_D_i K_P_i <= K_I_i``, or -1: by Routh, the nominal error polynomial
     ``s^3 + K_D s^2 + K_P s + K_I`` of the integral law has all its roots in the left half-plane iff (the gains
@@ -54,7 +54,7 @@ def integral_status(K_P, K_D, K_I):
     return -1
 
 
-@kernel
+@kernel(light=True)
 def pack_gains(K_P, K_D, K_I, tau_max, max_error, out):
     """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``K_P``, ``K_D``, ``K_I``, ``tau_max``
     (4,) and ``max_error``: the one packer of :meth:`OperationalSpaceController.gains_array` and of the

@@ -75,7 +75,7 @@ LAMBDA_MESSAGE = ("Lambda[{i}] = {Lambda:g} must be < K_D[{i}] = {K_D:g}: the we
                   "velocity block 2 (K_D - Lambda)) would not be positive definite")
 
 
-@kernel
+@kernel(light=True)
 def lambda_status(Lambda, K_D):
     """The first joint ``i`` whose ``Lambda_i >= K_D_i`` (4,) each, or -1: the check of :func:`sliding_weight`, whose
     weight ``P`` has the velocity block ``2 (K_D - Lambda)``, positive definite only when every ``Lambda_i < K_D_i``."""
@@ -254,7 +254,7 @@ SIGNALS = ArrayLayout(("z_norm", 1), ("w", 4))
 _S_ZNORM, _S_W = SIGNALS.offsets
 
 
-@kernel
+@kernel(light=True)
 def pack_gains(K_P, K_D, Z, rho, epsilon, B_hat, tau_max, max_error, out):
     """The law's gain array (:data:`GAINS`, ``out`` of ``GAINS.size``) from ``K_P``, ``K_D``, ``B_hat``,
     ``tau_max`` (4,) each, ``Z = D^T Q`` (32,) row-major, ``rho``, ``epsilon`` and ``max_error``: the one packer of

@@ -14,7 +14,7 @@ LOG_FLOOR = 1e-12
 
 
 # --------------------------------------------------------------------------------------------------
-@kernel
+@kernel(light=True)
 def envelope_length(n, points):
     """The number of samples :func:`envelope_kernel` gives for ``n`` samples thinned to about ``points``."""
     if n <= points:
@@ -24,7 +24,7 @@ def envelope_length(n, points):
     return m + 1 if m * size < n else m
 
 
-@kernel
+@kernel(light=True)
 def thin_length(n, points):
     """The number of samples :func:`thin_kernel` gives: ``min(n, points)`` (the rounded, evenly spaced indices
     of more samples than points never repeat, as they are more than one apart)."""

@@ -130,31 +130,31 @@ def plan_size(n: int) -> int:
     return PLAN_HEAD + PLAN_WAYPOINT * n + PLAN_SEGMENT * (n - 1)
 
 
-@kernel
+@kernel(light=True)
 def spec_waypoint(n, i):
     """The offset of waypoint ``i``'s block in the spec of ``n`` waypoints."""
     return SPEC_HEAD + SPEC_WAYPOINT * i
 
 
-@kernel
+@kernel(light=True)
 def spec_segment(n, j):
     """The offset of segment ``j``'s block in the spec of ``n`` waypoints."""
     return SPEC_HEAD + SPEC_WAYPOINT * n + SPEC_SEGMENT * j
 
 
-@kernel
+@kernel(light=True)
 def plan_waypoint(n, i):
     """The offset of waypoint ``i``'s block in the plan of ``n`` waypoints."""
     return PLAN_HEAD + PLAN_WAYPOINT * i
 
 
-@kernel
+@kernel(light=True)
 def plan_segment(n, j):
     """The offset of segment ``j``'s block in the plan of ``n`` waypoints."""
     return PLAN_HEAD + PLAN_WAYPOINT * n + PLAN_SEGMENT * j
 
 
-@kernel
+@kernel(light=True)
 def whole_samples(value, dt):
     """``(code, n)``: ``value`` (s) as ``n`` sampling periods ``dt``; the code is 1 when ``value / dt`` exceeds
     :data:`MAX_SAMPLES` (or is NaN), 2 when it is more than 1e-6 periods away from a whole number, 0 otherwise."""
@@ -211,7 +211,7 @@ def _segment_info(info, j):
     info[I_S_A1] = j + 1
 
 
-@kernel
+@kernel(light=True)
 def build_plan(spec, plan, info):
     """Check and resolve a plan's inputs ``spec`` into the planned path ``plan`` (the layouts of
     :mod:`scara.programs.path`), in the planner's order: the segments' numbers of samples, the blends (a third of

@@ -50,7 +50,7 @@ ARC_RADIUS, ARC_ANGLE, ARC_LENGTH, ARC_U, ARC_V, ARC_NORMAL, ARC_INFO, ARC_RHO0,
 ARC_OUT = 15
 
 
-@kernel
+@kernel(light=True)
 def line_geometry(a, b):
     """``(code, length, t_x, t_y, t_z)`` of the segment from ``a`` to ``b`` (3,): ``length = |b - a|`` and the unit
     tangent ``t = (b - a) / length`` (eq. 4.34); the code is :data:`LINE_OVERFLOW` for a length that is not finite,
@@ -71,7 +71,7 @@ def _dot3(ax, ay, az, bx, by, bz):
     return ax * bx + ay * by + az * bz
 
 
-@kernel
+@kernel(light=True)
 def arc_through(a, b, c, out):
     """The circle through ``a``, ``b``, ``c`` (3,), travelled in that order: the centre (circumcentre)
     ``a + (|ac|^2 (ab x ac) x ab + |ab|^2 ac x (ab x ac)) / (2 |ab x ac|^2)`` written into ``out[0:3]`` and the
@@ -108,7 +108,7 @@ def arc_through(a, b, c, out):
     return GEOMETRY_OK
 
 
-@kernel
+@kernel(light=True)
 def arc_geometry(centre, start, end, normal, radius, out):
     """The arc about ``centre`` from ``start`` to ``end`` (3,), counter-clockwise about ``normal`` (3,), written into
     ``out`` (:data:`ARC_OUT`,): the radius ``rho`` (``radius``, or ``|start - centre|`` when ``radius`` is NaN),

@@ -65,7 +65,7 @@ LAW_BLEND_TOO_LONG = 21
 LAW_NOT_FINITE = 22
 
 
-@kernel
+@kernel(light=True)
 def trapezoid_check(L, T, tc):
     """``(code, blend, v_c, a)`` of the law covering ``L`` (m) in ``T`` (s) with the blend ``tc`` (s), all three
     positive: the blend is refused (:data:`LAW_BLEND_TOO_LONG`) beyond ``T/2`` (with a relative tolerance of
