@@ -450,7 +450,8 @@ def _config(value, name="q", allow_batch=False):
 
 
 def inertia(q, p: ScaraParams | None = None) -> np.ndarray:
-    """Inertia matrix ``B(q)`` of the arm with rotors and payload (chapter 5), shape (4, 4).
+    """Inertia matrix ``B(q)`` of the arm with rotors and payload (chapter 5), shape (4, 4); a series ``q`` (N, 4)
+    gives the N matrices, shape (N, 4, 4), in one compiled loop.
 
     Units: kg m^2 for the revolute entries, kg for ``B33``, kg m for ``B13``/``B23``. Raises
     :class:`~scara.ShapeError` / :class:`~scara.NonFiniteError` for a bad ``q``.
@@ -458,10 +459,20 @@ def inertia(q, p: ScaraParams | None = None) -> np.ndarray:
     >>> round(float(inertia([0, 0, 0.5, 0])[2, 2]), 6)   # m3 + k_r3^2 I_m3 = 10 + 2500 * 0.005
     22.5
     """
-    out = np.empty((4, 4))
-    q = _config(q)
-    inertia_kernel(q, dynamic_array(p), out)
+    q = _config(q, allow_batch=True)
+    out = np.empty(q.shape[:-1] + (4, 4))
+    if q.ndim == 1:
+        inertia_kernel(q, dynamic_array(p), out)
+    else:
+        inertia_rows(q, dynamic_array(p), out)
     return check_finite_result(out, "B(q)", q=q)
+
+
+@kernel
+def inertia_rows(q, dp, out):
+    """``out[k] = B(q[k])`` (:func:`inertia_kernel`) for every row of ``q`` (N, 4); ``out`` (N, 4, 4)."""
+    for k in range(q.shape[0]):
+        inertia_kernel(q[k], dp, out[k])
 
 
 def coriolis(q, qd, p: ScaraParams | None = None) -> np.ndarray:

@@ -191,6 +191,24 @@ def test_inertia_symmetric_positive_definite(q, p):
     assert np.linalg.eigvalsh(B).min() > 0.1  # the smallest eigenvalue is ~1 kg m^2 (B44 with the rotor)
 
 
+@given(st.lists(configs, min_size=1, max_size=6), st.sampled_from([P0, P5]))
+def test_inertia_of_a_series_is_the_matrix_of_each_row(qs, p):
+    q = np.array(qs)
+    B = inertia(q, p)
+    assert B.shape == (len(qs), 4, 4)
+    for k, qk in enumerate(qs):
+        assert np.array_equal(B[k], inertia(qk, p))
+
+
+def test_inertia_of_a_series_refuses_bad_rows():
+    with pytest.raises(ShapeError):
+        inertia(np.zeros((3, 5)))
+    q = np.zeros((3, 4))
+    q[1, 2] = np.nan
+    with pytest.raises(NonFiniteError):
+        inertia(q)
+
+
 def test_reference_values():
     """Hand-computed entries at theta2 = 0 (c2 = 1) and theta2 = pi/2 (c2 = 0), without payload."""
     B = inertia([0.0, 0.0, 0.5, 0.0])

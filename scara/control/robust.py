@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from .._compile import ArrayLayout, kernel
-from ..dynamics import dynamic_array, friction_kernel, gravity_kernel, inertia, inertia_kernel
+from ..dynamics import dynamic_array, friction_kernel, gravity_kernel, inertia, inertia_rows
 from ..errors import (
     ScaraError, ShapeError, UnstableError, as_array, check_angles, check_count, check_finite_result, check_positive,
     is_bool,
@@ -135,14 +135,6 @@ MAX_SWEEP = 1_000_000
 MAX_DESIGN = 5_000
 
 
-@kernel
-def _inertia_rows(q, dp, out):
-    """``out[k] = B(q[k])`` (:func:`~scara.dynamics.inertia_kernel`) for every row of ``q`` (N, 4); ``out``
-    (N, 4, 4)."""
-    for k in range(q.shape[0]):
-        inertia_kernel(q[k], dp, out[k])
-
-
 def _inertias(q, payloads, p, limit: int = MAX_SWEEP, why: str = "1,000,000 inertia matrices take 128 MB"):
     """The checked configurations (N, 4) and the inertia matrices ``B(q)`` (len(payloads) N, 4, 4), payload by
     payload (``payloads=None``: ``p``'s own); at most ``limit`` matrices (``why`` says where the limit comes
@@ -174,7 +166,7 @@ def _inertia_sweep(q, dps, limit, why):
     check_count(len(q) * len(dps), "len(q) * len(payloads)", 1, limit, "inertia matrices", why)
     Bs = np.empty((len(dps), len(q), 4, 4))
     for i, dp in enumerate(dps):  # every configuration in one compiled loop
-        _inertia_rows(q, dp, Bs[i])
+        inertia_rows(q, dp, Bs[i])
     return Bs.reshape(-1, 4, 4)
 
 
