@@ -24,7 +24,7 @@ from plotly.subplots import make_subplots
 from ..errors import ScaraError, is_bool
 from ._common import PALETTE, as_list, envelope, run_colour, run_label, run_name, thin
 from .course import course_figure
-from .kinematics import top_axes, top_view_arm
+from .kinematics import top_arm_points, top_axes, top_view_arm
 from .layout import finish_layout
 from .trajectory import decimate
 from ..params import ScaraParams
@@ -128,13 +128,20 @@ def play_controls(times, redraw: bool = False, duration: int = FRAME_MS, prefix:
 
 
 def _frames(data, trace_ids) -> list:
-    """One ``go.Frame`` per entry of ``data`` (a list of lists of traces), named by its position."""
-    return [go.Frame(data=d, traces=list(trace_ids), name=str(i)) for i, d in enumerate(data)]
+    """One frame per entry of ``data`` (a list of lists of :func:`_moved` traces), named by its position, as the
+    dicts ``fig.frames`` takes: plotly checks each trace once there (a ``go.Frame`` of ``go.Scatter`` traces is
+    checked three times over, most of an animation's build time)."""
+    return [dict(data=d, traces=list(trace_ids), name=str(i)) for i, d in enumerate(data)]
+
+
+def _moved(x, y, z=None) -> dict:
+    """The coordinates a frame gives one of its moving traces (a 2-D scatter, or a 3-D one with ``z``)."""
+    return dict(type="scatter", x=x, y=y) if z is None else dict(type="scatter3d", x=x, y=y, z=z)
 
 
 def _arm_xy(q, p):
-    a = top_view_arm(q, p)
-    return list(a.x), list(a.y)
+    pts = top_arm_points(q, p)
+    return as_list(pts[:, 0]), as_list(pts[:, 1])
 
 
 def _box(points, margin=0.05):
@@ -174,8 +181,8 @@ def trajectory_animation(traj, p=None, fast: float = 0.1, rest: float = 1.0, hei
     data = []
     for i, (ax, ay) in zip(idx, arms):
         c = np.r_[kt[kt < i], i]
-        data.append([go.Scatter(x=as_list(traj.x[c, 0]), y=as_list(traj.x[c, 1])), go.Scatter(x=ax, y=ay),
-                     go.Scatter(x=as_list(traj.x[i:i + 1, 0]), y=as_list(traj.x[i:i + 1, 1]))])
+        data.append([_moved(as_list(traj.x[c, 0]), as_list(traj.x[c, 1])), _moved(ax, ay),
+                     _moved(as_list(traj.x[i:i + 1, 0]), as_list(traj.x[i:i + 1, 1]))])
     fig.frames = _frames(data, [1, 2, 3])
     xr, yr = _box(np.vstack([traj.x[k, :2], [[0.0, 0.0]], *[np.c_[a[0], a[1]] for a in arms]]))
     top_axes(fig, p, xr=xr, yr=yr)
@@ -288,7 +295,7 @@ def _runs_animation(runs, p, panels: _RunPanels, *, fast: float, rest: float, he
         arms = [_arm_xy(r.q[i], p) for i in idx]
         pts += [np.c_[a[0], a[1]] for a in arms[:: max(1, len(arms) // 60)]] + [tool[idx]]
         for d, i, (ax, ay) in zip(data, idx, arms):
-            d += [go.Scatter(x=ax, y=ay), go.Scatter(x=as_list(tool[i:i + 1, 0]), y=as_list(tool[i:i + 1, 1]))]
+            d += [_moved(ax, ay), _moved(as_list(tool[i:i + 1, 0]), as_list(tool[i:i + 1, 1]))]
     xr, yr = _box(np.vstack(pts))
     for j in range(n):
         row, col = j // cols + 1, j % cols + 1
@@ -322,7 +329,7 @@ def _error_panel(fig, runs, row, idx, errs=None):
                                  hoverinfo="skip"), row=row, col=1)
         moving.append(len(fig.data) - 1)
         for d, i in zip(data, idx):
-            d.append(go.Scatter(x=_sig(r.t[i:i + 1]), y=_sig(e[i:i + 1])))
+            d.append(_moved(_sig(r.t[i:i + 1]), _sig(e[i:i + 1])))
     fig.update_yaxes(type="log", exponentformat="power", title_text="|e| (m)", row=row, col=1)
     return moving, data
 
@@ -389,7 +396,7 @@ def control_animation(runs, true_mass: float | None = None, p=None, fast: float 
                           row=row + 1, col=1)
             moving.append(len(fig.data) - 1)
             for d, i in zip(data, idx):
-                d.append(go.Scatter(x=_sig(r.t[i:i + 1]), y=_sig(m[i:i + 1])))
+                d.append(_moved(_sig(r.t[i:i + 1]), _sig(m[i:i + 1])))
         fig.update_yaxes(title_text="m̂_L (kg)", row=row + 1, col=1)
         fig.update_xaxes(title_text="t (s)", row=row + 1, col=1)
         return moving, data
@@ -422,8 +429,8 @@ def course_animation(traj, p=None, fast: float = 0.1, rest: float = 1.0, height:
         a = arm_geometry(q[i], p)["arm"]
         c = np.r_[kt[kt < i], i]
         tr = traj.x[c]
-        data.append([go.Scatter3d(x=as_list(tr[:, 0]), y=as_list(tr[:, 1]), z=as_list(tr[:, 2])),
-                     go.Scatter3d(x=as_list(a[:, 0]), y=as_list(a[:, 1]), z=as_list(a[:, 2]))])
+        data.append([_moved(as_list(tr[:, 0]), as_list(tr[:, 1]), as_list(tr[:, 2])),
+                     _moved(as_list(a[:, 0]), as_list(a[:, 1]), as_list(a[:, 2]))])
     fig.frames = _frames(data, [trail, arm])
     fig.layout.title.text = "The course on one figure<br>the arm along the 70 s reference path"
     fig.layout.sliders = ()  # replaced, not merged step by step with the slider of course_figure

@@ -434,10 +434,15 @@ def _top_arm_trace(xs, ys, colour=None, name="arm", width: float = 5, showlegend
 def top_view_arm(q, p=None, colour=None, name="arm", width: float = 5, showlegend=True, opacity=1.0,
                  dash: str = "solid") -> go.Scatter:
     """The arm at ``q`` seen from above (base x-y plane) as one 2-D line trace: base axis, elbow, end effector."""
+    pts = top_arm_points(q, p)
+    return _top_arm_trace(pts[:, 0], pts[:, 1], colour, name, width, showlegend, opacity, dash)
+
+
+def top_arm_points(q, p=None) -> np.ndarray:
+    """The points of the arm at ``q`` seen from above, (3, 2): the base axis, the elbow, the end effector (m)."""
     p = ScaraParams.resolve(p)
     origins = link_frames(q, p)[:, :3, 3]
-    pts = np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
-    return _top_arm_trace(pts[:, 0], pts[:, 1], colour, name, width, showlegend, opacity, dash)
+    return np.array([[0.0, 0.0], origins[1, :2], origins[2, :2]])
 
 
 def _circle(radius, n=145):
