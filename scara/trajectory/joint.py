@@ -658,6 +658,20 @@ def joint_counterpart(traj: Trajectory, kind: str = "cubic", extra: int = 0, vel
                             labels=labels, p=traj.params, check=check)
 
 
+def _path_tree(traj: Trajectory) -> tuple:
+    """The distinct points of ``traj``'s path (M, 3) (the samples at rest repeat a point: one copy is enough) and
+    their k-d tree (``scipy.spatial.cKDTree``), built once per trajectory (its samples are read-only)."""
+    if "path_tree" not in traj._cache:
+        from scipy.spatial import cKDTree  # noqa: PLC0415
+
+        path = np.ascontiguousarray(traj.x[:, :3])
+        keep = np.r_[True, np.any(np.diff(path, axis=0) != 0, axis=1)]
+        path = path[keep]
+        path.flags.writeable = False
+        traj._cache["path_tree"] = (path, cKDTree(path))
+    return traj._cache["path_tree"]
+
+
 def path_deviation(jt: JointTrajectory, traj: Trajectory) -> np.ndarray:
     """How far the tool of the joint-space trajectory ``jt`` strays from the path of the operational trajectory
     ``traj``: at every sample of ``jt``, the distance (m) from the tool's position to the nearest point of the
@@ -670,16 +684,12 @@ def path_deviation(jt: JointTrajectory, traj: Trajectory) -> np.ndarray:
     >>> bool(d[0] < 1e-12), bool(d.max() > 0.01)        # at the start on the path; between the points, not
     (True, True)
     """
-    from scipy.spatial import cKDTree  # noqa: PLC0415
-
     if not isinstance(jt, JointTrajectory):
         raise ScaraError(f"jt must be a JointTrajectory, got {type(jt).__name__}")
     _check_plan(traj)
-    path = np.ascontiguousarray(traj.x[:, :3])
-    keep = np.r_[True, np.any(np.diff(path, axis=0) != 0, axis=1)]
-    path = path[keep]                       # the samples at rest repeat a point: one copy is enough
+    path, tree = _path_tree(traj)
     tool = np.ascontiguousarray(jt.tool()[0][:, :3])
-    _, nearest = cKDTree(path).query(tool)
+    _, nearest = tree.query(tool, workers=-1)  # every core: the same nearest points, sooner
     best = np.full(len(tool), np.inf)
     for shift in (-1, 0):                   # the pieces either side of the nearest sample hold the nearest point
         a_idx = np.clip(nearest + shift, 0, len(path) - 2)
