@@ -51,6 +51,18 @@ CHECK_MAGIC = "%%book_check"
 LOAD_MAGIC = "import scara.book; scara.book.load_ipython_extension(get_ipython())"
 
 
+def load_line(nb: dict) -> str:
+    """:data:`LOAD_MAGIC`, naming the live panels the notebook's code builds (``panels=("control_panel",)``), whose
+    programs the kernel then compiles ahead in the background (:func:`scara.book.compile_ahead`)."""
+    import scara.widgets  # noqa: F401, PLC0415 - its builders register themselves in AHEAD_BUILDERS
+    from scara.book import AHEAD_BUILDERS  # noqa: PLC0415
+
+    code = "\n".join("".join(c["source"]) if isinstance(c["source"], list) else c["source"]
+                     for c in nb.get("cells", []) if c["cell_type"] == "code")
+    panels = [name for name in AHEAD_BUILDERS if re.search(rf"\b{name}\(", code)]
+    return LOAD_MAGIC if not panels else LOAD_MAGIC[:-1] + f", panels={tuple(panels)!r})"
+
+
 @dataclass
 class Resolver:
     """What each reference of one chapter (``docname``) reads as in the book. ``lookup(kind, label)`` gives
@@ -181,11 +193,12 @@ def lab_notebook(nb: dict, res: Resolver, glued: dict) -> dict:
     first_md = True
     loaded = False
     cells = nb.get("cells", [])
+    load = load_line(nb)
     first_code = next((c for c in cells if c["cell_type"] == "code"), None)
     if first_code is not None and "remove-cell" in first_code.get("metadata", {}).get("tags", []):
         # a check cell's magic must be its first line: the loading goes in a cell of its own before it
         cells.insert(cells.index(first_code), {"cell_type": "code", "id": "scara-book-load", "execution_count": None, "outputs": [],
-                                               "metadata": {"tags": ["hide-input"]}, "source": LOAD_MAGIC})
+                                               "metadata": {"tags": ["hide-input"]}, "source": load})
     for cell in cells:
         meta = cell.setdefault("metadata", {})
         tags = meta.get("tags", [])
@@ -205,7 +218,7 @@ def lab_notebook(nb: dict, res: Resolver, glued: dict) -> dict:
         elif cell["cell_type"] == "code":
             cell["outputs"], cell["execution_count"] = [], None
             if not loaded:  # the first code cell loads what the text and the checks call
-                src = src if src == LOAD_MAGIC else LOAD_MAGIC + "\n" + src
+                src = src if src == load else load + "\n" + src
                 loaded = True
             if "remove-cell" in tags:
                 src = CHECK_MAGIC + "\n" + src

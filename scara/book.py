@@ -13,13 +13,28 @@ in JupyterLab alike.
 * The checks the book runs on its own numbers (hidden cells) carry the cell magic ``%%book_check`` in the
   take-home copy (:func:`book_check`): a check that fails, as a check of the book's values does once the learner
   changed an input, prints one line that says so and the chapter goes on; every other statement of the cell runs.
+* The take-home chapter's first cell also names the live panels the chapter builds: :func:`compile_ahead` compiles
+  their page programs in a background process (on a second core, at low priority) while the chapter's first cells
+  run, into numba's on-disk cache, and a panel's first move waits for that work (:func:`wait_compiled`) instead
+  of compiling the same program again. On an empty compile cache a panel's program takes up to 13 s to compile
+  (chapter 6's controllers); the chapter no longer waits for most of it.
 """
 from __future__ import annotations
 
 import ast
+import atexit
+import functools
+import os
 import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
 
-__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "book_check", "load_ipython_extension"]
+__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "book_check", "load_ipython_extension",
+           "compile_ahead", "ahead", "wait_compiled", "kernel_name", "AHEAD_BUILDERS"]
 
 #: every value glued in this kernel, by name (the latest one of a name)
 GLUED: dict = {}
@@ -154,11 +169,134 @@ def book_check(line: str, cell: str, namespace: dict | None = None) -> list[str]
     return notes
 
 
-def load_ipython_extension(ipython):
+def load_ipython_extension(ipython, panels=()):
     """``%load_ext scara.book`` (or this function called again, as the take-home chapters' first cell does: a
     second call changes nothing): registers the cell magic ``%%book_check`` (:func:`book_check`) and gives the
-    notebook :func:`glued` and :func:`show`, which the text's inline expressions call."""
+    notebook :func:`glued` and :func:`show`, which the text's inline expressions call. ``panels`` names the
+    :mod:`scara.widgets` builders the chapter calls, whose programs :func:`compile_ahead` compiles meanwhile."""
     ipython.push({"glued": glued, "show": show})
     ipython.register_magic_function(lambda line, cell: book_check(line, cell, ipython.user_ns) and None,
                                     magic_kind="cell", magic_name="book_check")
+    if panels:
+        compile_ahead(panels)
 
+
+# --------------------------------------------------------------------------------------------------
+# compiling the chapter's panels ahead, in a background process
+# --------------------------------------------------------------------------------------------------
+#: set in the background process's environment (it starts no process of its own)
+AHEAD_CHILD = "SCARA_COMPILE_AHEAD_CHILD"
+#: the longest a panel waits for the background process to compile its program (s); then it compiles it itself
+AHEAD_TIMEOUT = 300.0
+#: the running background process, its marker folder (one file per kernel compiled) and its kernels' names
+_AHEAD: dict = {}
+#: the :mod:`scara.widgets` builders (decorated by :func:`ahead`): the compiled kernels of their panels, by name
+AHEAD_BUILDERS: dict = {}
+
+
+def kernel_name(kernel) -> str:
+    """A kernel's name in the marker folder of :func:`compile_ahead`: its module and qualified name."""
+    fn = getattr(kernel, "py_func", kernel)
+    return f"{fn.__module__}.{fn.__qualname__}"
+
+
+def compile_ahead(panels) -> bool:
+    """Start one background process that compiles the page programs of the panels named in ``panels`` (builders of
+    :mod:`scara.widgets`, such as ``"control_panel"``; then the kernels that prepare their data) into numba's
+    on-disk cache, which this kernel then reads instead of compiling them: a panel's move waits for its program
+    there (:func:`wait_compiled`). The process runs at a lower priority, with this kernel's environment (the same
+    ``NUMBA_CACHE_DIR``), and is stopped when the kernel exits. Returns whether a process was started (not when
+    one is running, when there is nothing to compile, when numba is missing, or inside such a process)."""
+    from . import widgets  # noqa: F401, PLC0415 - its builders register their kernels in AHEAD_BUILDERS
+    from ._compile import COMPILED  # noqa: PLC0415
+
+    names = tuple(dict.fromkeys(str(n) for n in panels))
+    if not names:
+        return False
+    unknown = [n for n in names if n not in AHEAD_BUILDERS]
+    if unknown:
+        raise ValueError(f"panels {unknown} are not builders of scara.widgets; they are {sorted(AHEAD_BUILDERS)}")
+    kernels = tuple(dict.fromkeys(kernel_name(k) for n in names for k in AHEAD_BUILDERS[n]))
+    if not kernels or not COMPILED or os.environ.get(AHEAD_CHILD) or _AHEAD.get("process") is not None:
+        return False
+    folder = tempfile.mkdtemp(prefix="scara-ahead-")
+    kw: dict = {}
+    if sys.platform == "win32":
+        kw["creationflags"] = subprocess.BELOW_NORMAL_PRIORITY_CLASS
+    else:
+        kw["preexec_fn"] = lambda: os.nice(10)
+    process = subprocess.Popen([sys.executable, "-m", "scara.book", folder, *names], stdin=subprocess.DEVNULL,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               env={**os.environ, AHEAD_CHILD: "1"}, **kw)
+    if not _AHEAD.get("registered"):
+        atexit.register(_stop_ahead)
+    _AHEAD.update(process=process, folder=Path(folder), kernels=kernels, registered=True)
+    return True
+
+
+def _stop_ahead():
+    """Stop the background process of :func:`compile_ahead` if it still runs, and remove its marker folder."""
+    process = _AHEAD.pop("process", None)
+    if process is not None and process.poll() is None:
+        process.kill()
+    if process is not None:
+        process.wait()
+    folder = _AHEAD.pop("folder", None)
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+    _AHEAD.pop("kernels", None)
+
+
+def wait_compiled(kernel, timeout: float = AHEAD_TIMEOUT) -> None:
+    """Wait until the background process of :func:`compile_ahead` has compiled ``kernel`` (or has ended, or
+    ``timeout`` s passed); at once when it was not asked to."""
+    process = _AHEAD.get("process")
+    if process is None:
+        return
+    name = kernel_name(kernel)
+    if name not in _AHEAD["kernels"]:
+        return
+    marker = _AHEAD["folder"] / name
+    end = time.monotonic() + timeout
+    while not marker.exists() and process.poll() is None and time.monotonic() < end:
+        time.sleep(0.02)
+
+
+def ahead(*kernels):
+    """Decorator of a :mod:`scara.widgets` panel builder: ``kernels`` are its panel's compiled kernels, its page
+    program first (then those that prepare its data), each taking float arrays only, which :func:`compile_ahead`
+    compiles for a chapter that calls the builder."""
+
+    def register(builder):
+        AHEAD_BUILDERS[builder.__name__] = kernels
+        return builder
+
+    return register
+
+
+def _compile_kernels(folder: str, names) -> None:
+    """The background process: the kernels of each panel named, compiled (or read from the cache) for arrays of
+    floats, in order; a marker file for each kernel done, whatever the outcome (a kernel that cannot be compiled
+    here is compiled, or refused with its message, by the panel in the kernel)."""
+    import numba  # noqa: PLC0415
+
+    import scara.widgets  # noqa: F401, PLC0415 - the builders register their kernels
+
+    from scara.book import AHEAD_BUILDERS as builders  # noqa: PLC0415 - the module's, not __main__'s
+
+    done = set()
+    for name in names:
+        for k in builders[name]:
+            if kernel_name(k) in done:
+                continue
+            done.add(kernel_name(k))
+            try:
+                n = k.py_func.__code__.co_argcount
+                k.compile((numba.types.float64[::1],) * n)
+            except Exception:  # noqa: BLE001, S110 - the panel in the kernel compiles it and reports any problem
+                pass
+            Path(folder, kernel_name(k)).touch()
+
+
+if __name__ == "__main__":  # python -m scara.book FOLDER BUILDER...: the process of compile_ahead
+    _compile_kernels(sys.argv[1], sys.argv[2:])

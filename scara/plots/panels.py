@@ -459,6 +459,9 @@ class PageProgram:
     def run(self, settings: dict, controls) -> dict:
         """Run the kernel for ``settings``: the outputs by field (one number as a float, more as a new array) with
         the settings, or :class:`ScaraError` with the refusal's message."""
+        from ..book import wait_compiled  # noqa: PLC0415
+
+        wait_compiled(self.kernel)  # a take-home chapter may be compiling it in the background (compile_ahead)
         out = _np.zeros(self.outputs.size)
         status = int(self.kernel(self.pack(settings, controls), self._given, out))
         values = self.values(out, settings)

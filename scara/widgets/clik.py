@@ -15,6 +15,7 @@ from ..plots.panels import Control, Flag, PageProgram, Panel, Text, program_pane
 from ..programs.clik import (INPUTS, PANEL_METHODS, clik_compact, clik_data, clik_outputs, clik_prepare, clik_program,
                              clik_start,
                              refusal_templates)
+from ..book import ahead
 from ._common import LivePanel, trajectory_arg
 
 __all__ = ["clik_panel", "clik_declaration", "clik_controls", "clik_page_program"]
@@ -79,6 +80,7 @@ def clik_declaration(traj=None, p=None, points: int = 800) -> Panel:
                          explain=lambda exc, values: str(exc), selector="method", roles={"clik": CLIK_PANEL_ROLES})
 
 
+@ahead(clik_program, clik_prepare)
 def clik_panel(traj=None, p=None, points: int = 800, keep: bool = False) -> LivePanel:
     """Method dropdown; a log slider for each gain ``K_x, K_y, K_z, K_phi`` (1/s; the second-order CLIK uses
     ``K_P = K^2``, ``K_D = 2 K``); damping ``lambda`` (m) of the damped least-squares inverse; null-space gain

@@ -24,7 +24,8 @@ from ..plots.control import (TUNING_CONTROLLERS, TUNING_ROLES, own_roles, tuning
 from ..plots.panels import Control, FigurePair, Flag, PageProgram, Panel, Text, program_panel, start_value
 from ..programs.control import (ADAPTIVE_K_D, INPUTS, control_compact, control_data, control_outputs, control_prepare,
                                 control_program, control_refusals, control_scratch, joint_reference_refusal,
-                                joint_reference_rows, own_run_outputs)
+                                fill_joint_reference, joint_reference_rows, own_run_outputs)
+from ..book import ahead
 from ._common import LivePanel, trajectory_arg
 
 __all__ = ["control_panel", "control_declaration", "make_controller", "own_gains", "OWN_GAINS", "PER_JOINT"]
@@ -226,6 +227,7 @@ def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 6
     return dataclasses.replace(panel, compute=compute, figures=(pair,), page=None)
 
 
+@ahead(control_program, control_prepare, fill_joint_reference)
 def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600, controllers=None,
                   keep: bool = False) -> LivePanel:
     """Controller dropdown and sliders: the pole ``omega`` (rad/s) of the independent-joint PID (the triple pole of

@@ -12,6 +12,7 @@ from ..plots.dynamics import INERTIA_TITLE, INERTIA_TRACES, inertia_panel_figure
 from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, stroke_control
 from ..programs.dynamics import (DYNAMICS_INPUTS, DYNAMICS_OUTPUTS, REFUSED_GAIN, REFUSED_PAYLOAD, REFUSED_SAG,
                                  SAG_NOTE, dynamics_data, dynamics_program)
+from ..book import ahead
 from ._common import LivePanel
 from ..params import ScaraParams
 
@@ -47,6 +48,7 @@ def dynamics_declaration(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), 
                          {"inertia": inertia_panel_figure}, widget="dynamics_panel", columns=3)
 
 
+@ahead(dynamics_program)
 def dynamics_panel(payload: float = 5.0, q=(0.0, -math.pi / 2, 0.5, 0.0), K_P3: float = 10000.0,
                    p=None, keep: bool = False) -> LivePanel:
     """Sliders for the payload mass (kg), theta1, theta2, theta4 (degrees), d3 (m) and the PD gain ``K_P3``

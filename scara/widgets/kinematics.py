@@ -15,6 +15,7 @@ from ..plots.kinematics import (ARM_TITLE, ARM_TRACES, IK_TITLE, IK_TRACES, arm_
 from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, stroke_control
 from ..programs.kinematics import (ARM_OUTPUTS, IK_ANGLE_TOO_LARGE, IK_OUTPUTS, inverse_kinematics_data,
                                    inverse_kinematics_program, kinematics_program)
+from ..book import ahead
 from ._common import LivePanel
 from ..params import ScaraParams
 
@@ -42,6 +43,7 @@ def kinematics_declaration(q=None, p=None) -> Panel:
                          {pair.role: pair.build}, widget="kinematics_panel")
 
 
+@ahead(kinematics_program)
 def kinematics_panel(q=None, p=None, keep: bool = False) -> LivePanel:
     """A slider per joint (theta1, theta2, theta4 in degrees, d3 in metres); on every move the 3-D arm with
     its frames is redrawn in place and ``x_e`` (1.6), ``det J_A`` and ``w`` are listed.
@@ -102,6 +104,7 @@ def inverse_kinematics_declaration(x=None, p=None) -> Panel:
     return panel
 
 
+@ahead(inverse_kinematics_program)
 def inverse_kinematics_panel(x=None, p=None, keep: bool = False) -> LivePanel:
     """Type a target ``p_x, p_y, p_z`` (m) and ``phi`` (degrees); both closed-form solutions (elbow +1 and
     -1) are drawn from above and listed. A target outside the workspace shows why, in metres and degrees,

@@ -11,6 +11,7 @@ from ..plots.manipulability import ELLIPSE_TITLE, ELLIPSE_TRACES, ellipse_panel_
 from ..plots.panels import Control, Flag, PageProgram, Panel, Text, angle_control, program_panel, start_value
 from ..programs.manipulability import (ELLIPSE_INPUTS, ELLIPSE_OUTPUTS, REFUSED_SCALE, ellipse_data,
                                        ellipse_program)
+from ..book import ahead
 from ._common import LivePanel
 from ..params import ScaraParams
 
@@ -45,6 +46,7 @@ def manipulability_declaration(theta1: float = 0.0, theta2: float = math.pi / 3,
                          columns=3)
 
 
+@ahead(ellipse_program)
 def manipulability_panel(theta1: float = 0.0, theta2: float = math.pi / 3, scale: float = 0.15, p=None,
                          keep: bool = False) -> LivePanel:
     """Sliders for theta1 and theta2 (degrees) and the ellipse scale (metres drawn per m/s and per N); the

@@ -22,6 +22,7 @@ from ..programs.path import plan_spec
 from ..trajectory import Waypoint, plan_path, reference_plan
 from ..trajectory import _plan as K
 from ..trajectory._plan import G_DURATION, MAX_SAMPLES, SPEC_HEAD, SPEC_SEGMENT, SPEC_WAYPOINT, W_ANT, W_X, W_Y, W_Z
+from ..book import ahead
 from ._common import LivePanel
 
 __all__ = ["WaypointEditor", "waypoint_editor", "waypoint_editor_declaration"]
@@ -292,6 +293,7 @@ def editor_refusals() -> dict:
     return {code: Text(text) for code, text in t.items()}
 
 
+@ahead(program.editor_program)
 def waypoint_editor(plan: dict | None = None, profiles: bool = True, keep: bool = False) -> WaypointEditor:
     """A live waypoint editor on ``plan`` (default: the reference scenario of chapter 3).
 

@@ -247,6 +247,57 @@ def test_a_chapter_that_opens_with_a_check_loads_the_magic_first():
     assert lab_copy.lab_notebook(nb, _resolver(), {})["cells"][1]["id"] == "scara-book-load"
 
 
+def test_the_first_cell_names_the_panels_the_chapter_builds():
+    nb = _nb(("markdown", "# T", {}), ("code", "from scara.widgets import control_panel, clik_panel", {}),
+             ("code", "clik_panel(traj)\npanel = control_panel(traj, keep=True)", {}))
+    code = [c["source"] for c in lab_copy.lab_notebook(nb, _resolver(), {})["cells"] if c["cell_type"] == "code"]
+    assert code[0] == ("import scara.book; scara.book.load_ipython_extension(get_ipython(), "
+                       "panels=('clik_panel', 'control_panel'))\nfrom scara.widgets import control_panel, clik_panel")
+    # only the builders a cell calls: an import alone, or a name in the text, starts nothing
+    nb = _nb(("code", "from scara.widgets import control_panel", {}))
+    assert lab_copy.lab_notebook(nb, _resolver(), {})["cells"][0]["source"].startswith(lab_copy.LOAD_MAGIC + "\n")
+
+
+def test_every_panel_builder_names_its_page_program_for_the_compile_ahead():
+    import importlib
+
+    import scara.widgets as widgets
+    from scara.book import AHEAD_BUILDERS
+
+    builders = {n for n in dir(widgets) if n.endswith("_panel") or n == "waypoint_editor"}
+    assert set(AHEAD_BUILDERS) == builders
+    for name, kernels in AHEAD_BUILDERS.items():
+        module = importlib.import_module(getattr(widgets, name).__module__)
+        declaration = getattr(module, re.sub(r"(_panel)?$", "_declaration", name, count=1))()
+        page = declaration.page
+        assert kernels[0] is page.kernel, name                  # the program first
+        assert page.prepare is None or page.prepare in kernels, name
+
+
+def test_compile_ahead_compiles_a_panel_into_the_cache_in_the_background(tmp_path, monkeypatch):
+    from scara import book
+    from scara.programs.dynamics import dynamics_program
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.delenv(book.AHEAD_CHILD, raising=False)
+    assert not book.compile_ahead(())
+    with pytest.raises(ValueError, match="not_a_panel"):
+        book.compile_ahead(["not_a_panel"])
+    try:
+        assert book.compile_ahead(["dynamics_panel", "dynamics_panel"])
+        assert not book.compile_ahead(["clik_panel"])           # one process at a time
+        assert book._AHEAD["kernels"] == ("scara.programs.dynamics.dynamics_program",)
+        folder = book._AHEAD["folder"]
+        book.wait_compiled(book.wait_compiled, timeout=0.0)     # not asked for: no wait
+        book.wait_compiled(dynamics_program, timeout=120.0)
+        assert (folder / "scara.programs.dynamics.dynamics_program").exists()
+        assert book._AHEAD["process"].wait(timeout=60) == 0
+        assert list((tmp_path / "cache").rglob("*dynamics_program*.nbi"))
+    finally:
+        book._stop_ahead()
+    assert not folder.exists() and "process" not in book._AHEAD
+
+
 def test_a_markdown_page_reads_as_the_book():
     entries = {"siciliano2009": ("Siciliano et al. 2009", "book", "Bruno Siciliano\\. *Robotics*\\. 2009\\."),
                "khatib1987": ("Khatib 1987", "article", "Oussama Khatib\\. A unified approach\\. 1987\\.")}
