@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import ast
 import atexit
-import functools
 import os
 import re
 import shutil
@@ -206,9 +205,14 @@ def compile_ahead(panels) -> bool:
     on-disk cache, which this kernel then reads instead of compiling them: a panel's move waits for its program
     there (:func:`wait_compiled`). The process runs at a lower priority, with this kernel's environment (the same
     ``NUMBA_CACHE_DIR``), and is stopped when the kernel exits. Returns whether a process was started (not when
-    one is running, when there is nothing to compile, when numba is missing, or inside such a process)."""
-    from . import widgets  # noqa: F401, PLC0415 - its builders register their kernels in AHEAD_BUILDERS
+    one is running, when there is nothing to compile, when numba or the panels' own packages (ipywidgets) are
+    missing, or inside such a process): the chapter runs the same without it."""
     from ._compile import COMPILED  # noqa: PLC0415
+
+    try:
+        from . import widgets  # noqa: F401, PLC0415 - its builders register their kernels in AHEAD_BUILDERS
+    except ImportError:  # an install without the panels: the chapter's panel cells say what is missing
+        return False
 
     names = tuple(dict.fromkeys(str(n) for n in panels))
     if not names:

@@ -298,6 +298,17 @@ def test_compile_ahead_compiles_a_panel_into_the_cache_in_the_background(tmp_pat
     assert not folder.exists() and "process" not in book._AHEAD
 
 
+def test_compile_ahead_steps_aside_without_the_panels_packages(monkeypatch):
+    import scara
+    from scara import book
+
+    monkeypatch.delenv(book.AHEAD_CHILD, raising=False)
+    monkeypatch.setitem(sys.modules, "scara.widgets", None)   # import scara.widgets raises ImportError
+    monkeypatch.delattr(scara, "widgets", raising=False)
+    assert not book.compile_ahead(["control_panel"])
+    assert "process" not in book._AHEAD
+
+
 def test_a_markdown_page_reads_as_the_book():
     entries = {"siciliano2009": ("Siciliano et al. 2009", "book", "Bruno Siciliano\\. *Robotics*\\. 2009\\."),
                "khatib1987": ("Khatib 1987", "article", "Oussama Khatib\\. A unified approach\\. 1987\\.")}
