@@ -58,6 +58,25 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
+def wait_until_up(url: str, proc, timeout: float, log_path) -> None:
+    """Wait until the JupyterLab server ``proc`` answers ``url``/api/status; ``RuntimeError`` with the end of its
+    log ``log_path`` if it exits first or does not answer within ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    while True:
+        if proc.poll() is not None:
+            raise RuntimeError(f"jupyter lab exited with {proc.returncode}:\n{Path(log_path).read_text()[-3000:]}")
+        try:
+            with urllib.request.urlopen(f"{url}/api/status", timeout=2) as r:
+                if r.status == 200:
+                    return
+        except OSError:
+            pass
+        if time.monotonic() > deadline:
+            raise RuntimeError(f"jupyter lab did not answer on {url} within {timeout:.0f} s:\n"
+                               f"{Path(log_path).read_text()[-3000:]}")
+        time.sleep(0.3)
+
+
 def stop_process_group(proc) -> None:
     """End a server started with ``start_new_session=True`` and everything it started (its kernels): SIGTERM to
     its process group, SIGKILL if it is still there after 20 s."""
@@ -108,19 +127,7 @@ def jupyterlab_server(notebooks=None, timeout: float = 90.0):
         stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True)
     url = f"http://127.0.0.1:{port}"
     try:
-        deadline = time.monotonic() + timeout
-        while True:
-            if proc.poll() is not None:
-                raise RuntimeError(f"jupyter lab exited with {proc.returncode}: {(tmp / 'server.log').read_text()[-2000:]}")
-            try:
-                with urllib.request.urlopen(f"{url}/api/status", timeout=2) as r:
-                    if r.status == 200:
-                        break
-            except OSError:
-                pass
-            if time.monotonic() > deadline:
-                raise RuntimeError(f"jupyter lab did not answer on {url} within {timeout:.0f} s")
-            time.sleep(0.3)
+        wait_until_up(url, proc, timeout, tmp / "server.log")
         yield url
     finally:
         stop_process_group(proc)

@@ -30,7 +30,6 @@ import sys
 import sysconfig
 import time
 import tomllib
-import urllib.request
 import venv
 import zipfile
 from pathlib import Path
@@ -266,23 +265,13 @@ def _start_lab(course: Path, start: str, tmp: Path, timeout: float = 90.0) -> st
     with open(log_path, "w") as log:
         proc = subprocess.Popen(["bash", "-c", f"exec {cmd}"], cwd=course, stdout=log, stderr=subprocess.STDOUT,
                                 env=env, start_new_session=True)
-        try:
-            deadline = time.monotonic() + timeout
-            while True:
-                if proc.poll() is not None:
-                    pytest.fail(f"`{start}` exited with {proc.returncode}:\n{log_path.read_text()[-3000:]}")
-                try:
-                    with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/status", timeout=2) as r:
-                        if r.status == 200:
-                            break
-                except OSError:
-                    pass
-                if time.monotonic() > deadline:
-                    pytest.fail(f"`{start}` did not answer within {timeout:.0f} s:\n{log_path.read_text()[-3000:]}")
-                time.sleep(0.3)
-        finally:
-            from jupyterlab_driver import stop_process_group  # noqa: PLC0415 - beside this file
+        from jupyterlab_driver import stop_process_group, wait_until_up  # noqa: PLC0415 - beside this file
 
+        try:
+            wait_until_up(f"http://127.0.0.1:{port}", proc, timeout, log_path)
+        except RuntimeError as exc:
+            pytest.fail(f"`{start}`: {exc}")
+        finally:
             stop_process_group(proc)
     return log_path.read_text()
 
