@@ -3,7 +3,7 @@
 When an HTML build finishes, the course's sources are packed into one deterministic zip (sorted entries, fixed
 timestamps and permissions, no caches, no build, no virtual environment), written to
 ``_downloads/scara-course.zip`` in the output folder. Every page of the book ends with a short block linking to
-it.
+it, and to the print edition (``print_edition.py``) where the build makes one.
 
 The zip holds one folder, ``scara-course/``: the chapters (``book/*.ipynb`` as JupyterLab reads them, written by
 ``lab_copy`` from the sources and the numbers the build gave every label: glued numbers as inline expressions,
@@ -112,15 +112,18 @@ BLOCK = """
 <p>Download <a class="reference download take-home-link" href="{href}" download>{name}</a>: every chapter as a
 notebook, with the <code>scara</code> package. Unpack it and, in its folder <code>{top}/</code>, run the one
 command of its <code>README.md</code> (Python 3.11) to open the chapters live in JupyterLab.</p>
-</div>
+{print_line}</div>
 """
 
 
 def _page_context(app, pagename, templatename, context, doctree):
     if doctree is None or not getattr(app, "_take_home", False) or "pathto" not in context:
         return  # generated pages (search, index) carry no link
+    from print_edition import links  # noqa: PLC0415 - beside this file: the print edition's line, if built
+
     href = context["pathto"](f"{ZIP_DIR}/{ZIP_NAME}", 1)
-    context["body"] = (context.get("body") or "") + BLOCK.format(href=href, name=ZIP_NAME, top=TOP)
+    context["body"] = (context.get("body") or "") + BLOCK.format(
+        href=href, name=ZIP_NAME, top=TOP, print_line=links(app, context["pathto"], pagename))
 
 
 def setup(app):
