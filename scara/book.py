@@ -32,7 +32,8 @@ import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "book_check", "load_ipython_extension",
+__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "fixed",
+           "book_check", "load_ipython_extension",
            "compile_ahead", "ahead", "wait_compiled", "kernel_name", "AHEAD_BUILDERS"]
 
 #: every value glued in this kernel, by name (the latest one of a name)
@@ -99,6 +100,21 @@ def format_plain_text(text: str, spec: str) -> str:
     elif kind in "eEfFgGn%":
         value = float(value)
     return format(value, spec)
+
+
+def fixed(value, digits: int = 2) -> str:
+    """``value`` with ``digits`` decimals, rounded half up after it is read to 9 significant digits: two results
+    that are equal in exact arithmetic but differ in their last bits (5.624999999999999 and 5.625000000000001,
+    one speed computed two ways) print the same, where ``format(v, ".2f")`` gives 5.62 and 5.63. A value that
+    rounds to zero prints without a sign.
+
+    >>> fixed(5.624999999999999), fixed(5.625000000000001), fixed(-0.0001), fixed(7.03125, 3)
+    ('5.63', '5.63', '0.00', '7.031')
+    """
+    from decimal import ROUND_HALF_UP, Decimal  # noqa: PLC0415
+
+    out = Decimal(f"{float(value):.9g}").quantize(Decimal(1).scaleb(-digits), rounding=ROUND_HALF_UP)
+    return str(abs(out) if out == 0 else out)
 
 
 def glued(name: str, spec: str = ""):
