@@ -189,7 +189,7 @@ ONE_MEANING = r"""async () => {
     });
     byToken.forEach((count, k) => count.forEach((n, c) => { if (n > 1) problems.push([c,
       `notation: ${k} has ${n} meanings in chapter ${c}: ${plain.slice(0, 140)}`]); }));
-    clauses.forEach(cl => { const m = cl.match(second); if (m) chaptersIn(cl).forEach(c => problems.push([c,
+    clauses.forEach(d => { const cl = d.textContent, m = cl.match(second); if (m) chaptersIn(cl).forEach(c => problems.push([c,
       `notation: ${head} has a second meaning in chapter ${c} ("${m[0]}"): ${cl.trim().slice(0, 120)}`])); });
     const scoped = plain.match(/in one (?:solution|exercise) of chapter (\d+)/);
     if (scoped && head && Number(scoped[1]) === chapter && !isNotation) {
