@@ -32,7 +32,8 @@ import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "book_check", "load_ipython_extension",
+__all__ = ["GLUED", "UNDEFINED", "UNDEFINED_TEXT", "glue", "glued", "show", "format_plain_text", "plain_text", "fixed",
+           "equation_numbers", "equation_links", "book_check", "load_ipython_extension",
            "compile_ahead", "ahead", "wait_compiled", "kernel_name", "AHEAD_BUILDERS"]
 
 #: every value glued in this kernel, by name (the latest one of a name)
@@ -99,6 +100,66 @@ def format_plain_text(text: str, spec: str) -> str:
     elif kind in "eEfFgGn%":
         value = float(value)
     return format(value, spec)
+
+
+def fixed(value, digits: int = 2) -> str:
+    """``value`` with ``digits`` decimals, rounded half up after it is read to 9 significant digits: two results
+    that are equal in exact arithmetic but differ in their last bits (5.624999999999999 and 5.625000000000001,
+    one speed computed two ways) print the same, where ``format(v, ".2f")`` gives 5.62 and 5.63. A value that
+    rounds to zero prints without a sign.
+
+    >>> fixed(5.624999999999999), fixed(5.625000000000001), fixed(-0.0001), fixed(7.03125, 3)
+    ('5.63', '5.63', '0.00', '7.031')
+    """
+    from decimal import ROUND_HALF_UP, Decimal  # noqa: PLC0415
+
+    out = Decimal(f"{float(value):.9g}").quantize(Decimal(1).scaleb(-digits), rounding=ROUND_HALF_UP)
+    return str(abs(out) if out == 0 else out)
+
+
+#: a labelled display equation of a chapter as the book writes it (``$$ ... $$ (label)``) and as its take-home copy
+#: does (``(label)=`` then ``$$ ... \tag{3.6} $$``)
+_BOOK_EQUATION = re.compile(r"^\$\$[ \t]*\n.*?\n\$\$[ \t]*\((?P<label>[^)\s]+)\)[ \t]*$", re.M | re.S)
+_COPY_EQUATION = re.compile(r"^\((?P<label>[^)\s]+)\)=[ \t]*\n\$\$.*?\\tag\{(?P<number>[^}]+)\}\s*\n\$\$", re.M | re.S)
+
+
+def equation_numbers(folder=None) -> dict:
+    """label -> (notebook file, number, anchor) for every labelled equation of the chapters ``NN_*.ipynb`` in
+    ``folder`` (default: the working directory, the chapters' own folder when a notebook runs), as the book numbers
+    them: chapter ``NN``, then the equation's rank in its chapter ("3.6"). In the book's sources the anchor is the
+    built page's (``03_trajectory.html``, ``equation-LABEL``); in the take-home copy, whose equations carry their
+    number as ``\tag{3.6}``, it is the notebook's (``03_trajectory.ipynb``, ``LABEL``)."""
+    import json  # noqa: PLC0415
+
+    out = {}
+    for path in sorted(Path(folder or Path.cwd()).glob("[0-9][0-9]_*.ipynb")):
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+        text = "\n".join("".join(c["source"]) if isinstance(c["source"], list) else c["source"]
+                         for c in cells if c["cell_type"] == "markdown")
+        copied = list(_COPY_EQUATION.finditer(text))
+        if copied:
+            out.update({m.group("label"): (path.name, m.group("number"), m.group("label")) for m in copied})
+            continue
+        chapter = int(path.name[:2])
+        for k, m in enumerate(_BOOK_EQUATION.finditer(text), 1):
+            out[m.group("label")] = (path.with_suffix(".html").name, f"{chapter}.{k}", f"equation-{m.group('label')}")
+    return out
+
+
+def equation_links(html_text: str, numbers: dict) -> str:
+    """``html_text`` with every "(eq-label)" of a known label as a link that reads as the book's number, "(3.6)"
+    (``numbers`` from :func:`equation_numbers`); an unknown label raises ``KeyError`` naming it.
+
+    >>> equation_links("cubic (eq-a)", {"eq-a": ("03_trajectory.html", "3.6", "equation-eq-a")})
+    'cubic <a href="03_trajectory.html#equation-eq-a">(3.6)</a>'
+    """
+    def link(m):
+        if m.group(1) not in numbers:
+            raise KeyError(f"the equation label {m.group(1)!r} is not in the book's chapters")
+        page, number, anchor = numbers[m.group(1)]
+        return f'<a href="{page}#{anchor}">({number})</a>'
+
+    return re.sub(r"\((eq-[\w-]+)\)", link, html_text)
 
 
 def glued(name: str, spec: str = ""):
