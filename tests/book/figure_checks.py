@@ -256,7 +256,8 @@ TICK_OVERLAPS = "() => {" + _COMMON + r"""
       const r = visibleBox(el);
       if (r) ticks.push({text: short(el.textContent), r, axis: el.parentNode.getAttribute('class')});
     });
-    gd.querySelectorAll('.annotation-text-g text, [class*="xtitle"], [class*="ytitle"], .gtitle').forEach(el => {
+    gd.querySelectorAll('.annotation-text-g text, text[class$="title"]').forEach(el => {
+      if (/^g-/.test(el.getAttribute('class') || '')) return;
       const r = visibleBox(el);
       if (r) texts.push({text: short(el.textContent), r});
     });
@@ -281,7 +282,8 @@ LONG_AXIS_TITLES = "() => {" + _COMMON + r"""
   document.querySelectorAll('.plotly-graph-div').forEach(gd => {
     if (!gd._fullLayout) return;
     const fig = nameOf(gd);
-    gd.querySelectorAll('[class*="xtitle"], [class*="ytitle"]').forEach(el => {
+    // axis titles: text.xtitle, text.ytitle, text.y2title... (the class of a numbered axis holds its number)
+    gd.querySelectorAll('text[class$="title"]').forEach(el => {
       const m = /^([xy])(\d*)title$/.exec(el.getAttribute('class') || '');
       const r = visibleBox(el);
       if (!m || !r) return;
