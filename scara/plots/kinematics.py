@@ -93,7 +93,7 @@ def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
 
 _CAMERA_EYE = (1.05, -1.35, 0.75)
 #: the aspect ratio of the arm's x and y axes in its 3-D scene
-_SCENE_SIZE = 0.8
+_SCENE_SIZE = 0.72
 _CAMERA_CENTRE = (0.0, 0.0, -0.05)
 #: font size (px) of the frame names in the 3-D views
 LABEL_SIZE = 13
