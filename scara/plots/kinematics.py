@@ -412,7 +412,7 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
                   scene=scene, uirevision="arm")
     # room under the plot for the slider (its pad, current value, rail and ticks), so that plotly need not
     # enlarge the margin, which would shrink the scene the frame names were placed for
-    fig.update_layout(margin=dict(b=_SLIDER_ROOM, l=0, r=0))
+    fig.update_layout(margin=dict(b=_SLIDER_ROOM, l=18, r=18))   # room for the slider's end labels only
     plot_height = _plot_height(fig)
     steps, notes = [], []
     for label, q in zip(labels, qs):
