@@ -245,7 +245,7 @@ def payload_estimate_figure(result, true_mass: float, horizon: float = 2.5, poin
     fig.add_trace(_line(tt, yy, "|m̂_L − m_L|", AXIS_COLOURS[0], width=1.6), row=2, col=1)
     finish_layout(fig, title or "Adaptive control: the payload estimate", height)
     fig.update_yaxes(title_text="m̂_L (kg)", row=1, col=1)
-    fig.update_yaxes(type="log", exponentformat="power", title_text="|m̂_L − m_L| (kg)", row=2, col=1)
+    fig.update_yaxes(type="log", exponentformat="power", title_text="|m̂_L − m_L|<br>(kg)", row=2, col=1)
     fig.update_xaxes(title_text="t (s)", row=1, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     return fig

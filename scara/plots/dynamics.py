@@ -86,8 +86,10 @@ def torque_terms_figure(t, breakdown: dict, target: int = 1500,
             fig.add_scatter(x=f32(t[idx]), y=f32(y), mode="lines", name=TERM_LABELS[k], legendgroup=k,
                             visible=(j == 0), line=dict(color=TERM_COLOURS[k], width=1.8, dash=TERM_DASHES[k]))
     groups = [list(range(j * n_terms, (j + 1) * n_terms)) for j in range(4)]
-    menu = [(_JOINT_NAMES[j], title, {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"}) for j in range(4)]
-    finish_layout(fig, title, height, groups=groups, menu=menu)
+    # the title says which joint the dropdown shows
+    menu = [(_JOINT_NAMES[j], f"{title}: {_JOINT_NAMES[j]}", {"yaxis.title.text": f"{_JOINT_SHORT[j]} ({JOINT_UNITS[j]})"})
+            for j in range(4)]
+    finish_layout(fig, menu[0][1], height, groups=groups, menu=menu)
     fig.update_xaxes(title_text="t (s)")
     fig.update_yaxes(title_text=f"{_JOINT_SHORT[0]} ({JOINT_UNITS[0]})")
     return fig

@@ -50,6 +50,9 @@ __all__ = [
 ELBOW_COLOURS = {+1: "#0072B2", -1: "#E69F00"}
 ELBOW_DASHES = {+1: "solid", -1: "dash"}
 _TRIAD_NAMES = ("x axes", "y axes", "z axes")
+#: line widths of the triads: plotly draws a legend's line 30 px long with dashes three widths long, so the
+#: dashed y axes are thin enough for their swatch to show two dashes (at width 5 it shows one, as if solid)
+_TRIAD_WIDTHS = (5, 3, 5)
 #: the heights (px) of the live panels' figures
 ARM_PANEL_HEIGHT = 480
 IK_PANEL_HEIGHT = 460
@@ -89,6 +92,8 @@ def arm_geometry(q, p=None, triad: float = 0.3) -> dict:
 
 
 _CAMERA_EYE = (1.05, -1.35, 0.75)
+#: the aspect ratio of the arm's x and y axes in its 3-D scene
+_SCENE_SIZE = 0.72
 _CAMERA_CENTRE = (0.0, 0.0, -0.05)
 #: font size (px) of the frame names in the 3-D views
 LABEL_SIZE = 13
@@ -231,7 +236,7 @@ def _arm_trace_list(arm, triads, colour=None, name="arm", frames=True, exact=Fal
         for k in range(3):
             s = triads[k]
             traces.append(go.Scatter3d(x=data(s[0]), y=data(s[1]), z=data(s[2]), mode="lines",
-                                       name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=5, dash=DASHES[k]),
+                                       name=_TRIAD_NAMES[k], line=dict(color=AXIS_COLOURS[k], width=_TRIAD_WIDTHS[k], dash=DASHES[k]),
                                        hoverinfo="skip"))
     return traces
 
@@ -244,11 +249,14 @@ def _arm_traces(q, p, triad, colour=None, name="arm", frames=True):
 def _scene(p):
     reach = p.r_max + 0.2
     ztop = p.d0 + 0.2
+    # small enough that the box, its tick labels and axis titles fit a phone-width page (plotly sizes a scene
+    # by its height); a tick a metre, the axis titles small
+    ticks = dict(dtick=1.0, tickfont=dict(size=11), title_font=dict(size=12))
     return dict(
-        xaxis=dict(title="x (m)", range=[-reach, reach]),
-        yaxis=dict(title="y (m)", range=[-reach, reach]),
-        zaxis=dict(title="z (m)", range=[0.0, ztop]),
-        aspectmode="manual", aspectratio=dict(x=1.15, y=1.15, z=1.15 * ztop / (2 * reach)),
+        xaxis=dict(title="x (m)", range=[-reach, reach], **ticks),
+        yaxis=dict(title="y (m)", range=[-reach, reach], **ticks),
+        zaxis=dict(title="z (m)", range=[0.0, ztop], **dict(ticks, dtick=0.5)),
+        aspectmode="manual", aspectratio=dict(x=_SCENE_SIZE, y=_SCENE_SIZE, z=_SCENE_SIZE * ztop / (2 * reach)),
         camera=dict(eye=dict(zip("xyz", _CAMERA_EYE)), center=dict(zip("xyz", _CAMERA_CENTRE))),
     )
 
@@ -319,6 +327,7 @@ def arm_panel_figure(values: dict, p=None, height: int = ARM_PANEL_HEIGHT) -> go
     fig = go.Figure(_arm_trace_list(_arm_xyz(values, "arm"), [_arm_xyz(values, f"{a}_axes") for a in "xyz"],
                                     exact=True))
     finish_layout(fig, ARM_TITLE.format(values), height, scene=_scene(p), uirevision="arm")
+    fig.update_layout(margin=dict(l=0, r=0))    # the scene's size is set by its height: side margins only cut it
     fig.add_trace(_names_trace(*(np.asarray(values[f"names_{c}"], dtype=float) for c in "xyz"), list(SLOT_LABELS)))
     return fig
 
@@ -349,6 +358,7 @@ def arm_figure(q, p=None, frames: bool = True, triad: float = 0.3, title: str | 
     fig = go.Figure(_arm_trace_list(_arm_xyz(values, "arm"), [_arm_xyz(values, f"{a}_axes") for a in "xyz"],
                                     frames=frames))
     finish_layout(fig, title or ARM_TITLE.format(values), height, scene=_scene(p), uirevision="arm")
+    fig.update_layout(margin=dict(l=0, r=0))    # the scene's size is set by its height: side margins only cut it
     if frames:
         shown = _shown_slots(values)
         if names == "annotations":
@@ -402,7 +412,7 @@ def joint_slider_figure(q0=None, joint: int = 1, values=None, p=None, triad: flo
                   scene=scene, uirevision="arm")
     # room under the plot for the slider (its pad, current value, rail and ticks), so that plotly need not
     # enlarge the margin, which would shrink the scene the frame names were placed for
-    fig.update_layout(margin_b=_SLIDER_ROOM)
+    fig.update_layout(margin=dict(b=_SLIDER_ROOM, l=18, r=18))   # room for the slider's end labels only
     plot_height = _plot_height(fig)
     steps, notes = [], []
     for label, q in zip(labels, qs):
@@ -616,10 +626,12 @@ def determinant_figure(p=None, theta1: float = 0.0, n: int = 181, height: int = 
     fig.add_trace(go.Scatter(x=as_list(t2, 2), y=as_list(np.abs(det), 5), mode="lines",
                              name="w = |det J_A|", line=dict(color=AXIS_COLOURS[1], dash="dash", width=2)))
     fig.add_trace(go.Scatter(x=[-180, 0, 180], y=[0, 0, 0], mode="markers+text", name="singular",
-                             text=["folded", "stretched", "folded"], textposition="top center",
+                             text=["folded", "stretched", "folded"],
+                             # off the curves: beside the ends, and below-right of 0° where both curves rise
+                             textposition=["middle left", "bottom right", "middle right"],
                              marker=dict(size=11, color=PALETTE["reference"], symbol="circle-open", line=dict(width=2))))
     finish_layout(fig, "det J_A against θ2 (θ1, d3, θ4 held)", height)
-    fig.update_xaxes(title_text="θ2 (°)", tickvals=list(range(-180, 181, 90)))
+    fig.update_xaxes(title_text="θ2 (°)", tickvals=list(range(-180, 181, 90)), range=[-250, 250])
     fig.update_yaxes(title_text="det J_A (m²)")
     return fig
 

@@ -53,6 +53,8 @@ REFERENCE_CONFIGURATIONS = {
 _CLIP = ELLIPSE_CLIP  # m: drawn semi-axes are capped here (the view is about 2.5 m wide)
 #: line style per ellipse kind: velocity solid, force dashed (told apart in greyscale)
 _DASH = {"velocity": "solid", "force": "dash"}
+#: the same styles for small ellipses (a few millimetres of outline): short dashes that leave each a whole curve
+_SMALL_DASH = {"velocity": "solid", "force": "3px,2px"}
 
 
 def ellipse_xy(ellipsoid, scale: float = 1.0, n: int = 181) -> np.ndarray:
@@ -143,6 +145,29 @@ def _boundary_trace(p, name="workspace boundary", showlegend=False):
                       line=dict(color="#999999", dash="dash", width=1), hoverinfo="skip")
 
 
+def _fit_top_axes(fig, p, pad: float = 0.1, limit: float | None = None) -> None:
+    """Equal-scale x-y axes (m) of a top view that hold the reach circle and every trace the figure draws, at
+    every step of its slider (one fixed range: nothing runs off the plot as the slider moves), ``pad`` m more on
+    each side; ``limit`` (m) caps the range (a strip drawn for an unbounded ellipse)."""
+    xs, ys = [np.array(_circle(p.r_max)[0])], [np.array(_circle(p.r_max)[1])]
+    for t in fig.data:
+        xs.append(np.array(t.x, dtype=float)), ys.append(np.array(t.y, dtype=float))
+    for sl in fig.layout.sliders or ():
+        for st in sl.steps:
+            change = st.args[0] if st.args else {}
+            xs += [np.array(v, dtype=float) for v in change.get("x", ())]
+            ys += [np.array(v, dtype=float) for v in change.get("y", ())]
+    x, y = np.concatenate(xs), np.concatenate(ys)
+    lo = np.array([np.nanmin(x), np.nanmin(y)]) - pad
+    hi = np.array([np.nanmax(x), np.nanmax(y)]) + pad
+    if limit is not None:
+        lo, hi = np.maximum(lo, -limit), np.minimum(hi, limit)
+    top_axes(fig, p, xr=[round(float(lo[0]), 3), round(float(hi[0]), 3)],
+             yr=[round(float(lo[1]), 3), round(float(hi[1]), 3)])
+    fig.update_xaxes(dtick=0.5)
+    fig.update_yaxes(dtick=0.5)
+
+
 def _inv(s):
     return "∞" if s < 1e-12 else (f"{1.0 / s:.3g}" if 1.0 / s < 1e4 else f"{1.0 / s:.1e}")
 
@@ -185,7 +210,8 @@ def reference_ellipses_figure(configurations: dict | None = None, p=None, veloci
                           args=[{"x": [t.x for t in tr], "y": [t.y for t in tr]}, {"title.text": title(name, q)},
                                 list(range(len(tr)))]))
     finish_layout(fig, title(first, qs[first]), height, sliders=[slider(steps, prefix="configuration ")])
-    top_axes(fig, p, xr=[-0.55, 1.55], yr=[-1.0, 1.0])
+    # the reach circle whole, and the ellipses as far as a view 3.4 m wide holds them (q5's strip runs off)
+    _fit_top_axes(fig, p, limit=1.7)
     return fig
 
 
@@ -204,8 +230,11 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
     pts = np.atleast_2d(pts)
     check_count(len(pts), "the number of points", 1, MAX_TARGETS, "targets", FIGURE_BUDGET)
     qs = np.atleast_2d(ikine(pts, p, elbow=elbow))
+    # the arms of the outer ring only (radius largest): 24 arms tangle into a web hiding the ellipses
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    outer = np.isclose(r, r.max(), atol=1e-9)
     ax, ay = [], []
-    for q in qs:
+    for q in qs[outer]:
         t = top_view_arm(q, p)
         ax += list(t.x) + [None]
         ay += list(t.y) + [None]
@@ -219,11 +248,11 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
             ys += as_list(xy[:, 1]) + [None]
         outlines[key] = (xs, ys, sc)
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=ax, y=ay, mode="lines", name=f"arms (elbow {elbow:+d})",
-                             line=dict(color="#BBBBBB", width=1.5), hoverinfo="skip"))
+    fig.add_trace(go.Scatter(x=ax, y=ay, mode="lines", name=f"arms, outer ring (elbow {elbow:+d})",
+                             line=dict(color="#C8C8C8", width=1.5), hoverinfo="skip"))
     xs, ys, sc = outlines["velocity"]
     fig.add_trace(go.Scatter(x=xs, y=ys, mode="lines", name="velocity ellipses", hoverinfo="skip",
-                             line=dict(color=PALETTE["velocity"], width=2, dash=_DASH["velocity"])))
+                             line=dict(color=PALETTE["velocity"], width=2, dash=_SMALL_DASH["velocity"])))
     fig.add_trace(go.Scatter(x=as_list(pts[:, 0]), y=as_list(pts[:, 1]), mode="markers", name="end effector",
                              marker=dict(size=4, color=PALETTE["reference"]),
                              hovertemplate="(%{x:.2f}, %{y:.2f}) m<extra></extra>"))
@@ -238,9 +267,9 @@ def workspace_ellipses_figure(points=None, p=None, elbow: int = -1, velocity_sca
         xs, ys, sc = outlines[key]
         steps.append(dict(label=key, method="update", args=[
             {"x": [xs], "y": [ys], "name": [f"{key} ellipses"], "line.color": [PALETTE[key]],
-             "line.dash": [_DASH[key]]}, {"title.text": title(key, sc)}, [1]]))
+             "line.dash": [_SMALL_DASH[key]]}, {"title.text": title(key, sc)}, [1]]))
     finish_layout(fig, title("velocity", velocity_scale), height, sliders=[slider(steps, prefix="ellipses: ")])
-    top_axes(fig, p, margin=0.15)
+    top_axes(fig, p, margin=0.1)
     return fig
 
 
@@ -399,7 +428,7 @@ def base_turn_figure(theta1_deg=None, theta2: float = math.pi / 4, p=None, scale
                                 list(range(len(tr)))]))
     fig.add_trace(_boundary_trace(p))
     finish_layout(fig, title(vals[0], qs[0]), height, sliders=[slider(steps, prefix="θ1 (°) = ")])
-    top_axes(fig, p)
+    _fit_top_axes(fig, p)      # one range that holds the ellipses at every step
     return fig
 
 

@@ -117,6 +117,12 @@ _LABEL_Y = {"top": (-21.2, -7.2), "bottom": (5.2, 19.2), "middle": (-8.0, 6.0)}
 #: the label positions tried, in order of preference
 _LABEL_POSITIONS = ("top center", "bottom center", "top right", "top left", "bottom right", "bottom left",
                     "middle right", "middle left")
+#: where a label of a crowded 3-D scene may also go: as far again from its point (``_FAR`` px further out, a thin
+#: leader line from the label to the point saying which point it names), at a cost (``_FAR_COST``) over a label
+#: beside its point
+_FAR = 26.0
+_FAR_COST = 120.0
+_FAR_POSITIONS = tuple("far " + p_ for p_ in _LABEL_POSITIONS)
 #: the drawing scales (px per m) a top view takes, from a phone-width page to a laptop screen
 _TOP_VIEW_SCALES = (300.0, 340.0, 450.0, 600.0, 800.0)
 
@@ -124,10 +130,30 @@ _TOP_VIEW_SCALES = (300.0, 340.0, 450.0, 600.0, 800.0)
 def _label_box(position, x, y, width):
     """The box ``(x0, y0, x1, y1)`` (screen px, y down) of a label ``width`` px wide placed at plotly's
     ``textposition`` ``position`` around a marker at ``(x, y)``."""
-    vert, horiz = position.split()
+    far, (vert, horiz) = position.startswith("far "), position.removeprefix("far ").split()
     x0, x1 = _LABEL_X[horiz](width)
     y0, y1 = _LABEL_Y[vert]
+    if far:
+        d = np.array([{"center": 0.0, "right": 1.0, "left": -1.0}[horiz], {"top": -1.0, "bottom": 1.0, "middle": 0.0}[vert]])
+        dx, dy = _FAR * d / np.hypot(*d)
+        x0, x1, y0, y1 = x0 + dx, x1 + dx, y0 + dy, y1 + dy
     return x + x0, y + y0, x + x1, y + y1
+
+
+def _box_distance(box, points):
+    """Distance (px) from the box ``(x0, y0, x1, y1)`` to each of ``points`` (k, 2): 0 inside."""
+    points = np.asarray(points, float)
+    dx = np.maximum.reduce([box[0] - points[:, 0], np.zeros(len(points)), points[:, 0] - box[2]])
+    dy = np.maximum.reduce([box[1] - points[:, 1], np.zeros(len(points)), points[:, 1] - box[3]])
+    return np.hypot(dx, dy)
+
+
+def _segment_distance(a, b, points):
+    """Distance (px) from the segment ``a``-``b`` to each of ``points`` (k, 2)."""
+    a, b, points = np.asarray(a, float), np.asarray(b, float), np.asarray(points, float)
+    d = b - a
+    t = np.clip(((points - a) @ d) / max(float(d @ d), 1e-12), 0.0, 1.0)
+    return np.hypot(*(points - (a + t[:, None] * d)).T)
 
 
 def _boxes_overlap(a, b, pad=1.0):
@@ -154,7 +180,7 @@ def _box_hits_polyline(box, xy, pad=1.0):
     return bool(np.any(lo <= hi))
 
 
-def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
+def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 300.0, 40.0)):
     """A ``textposition`` per label such that, at every drawing scale, no two labels overlap and none sits on a
     curve to avoid, if such a choice exists (the least overlap otherwise).
 
@@ -163,7 +189,7 @@ def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
     had better not cover (the path), and optionally ``markers`` (j, 2) other markers and ``forbid``
     ``{index: positions}`` places a label may not take. Empty texts are not placed. The cost of a choice adds,
     over the scales, ``weights``: a pair of overlapping labels, a label on a curve to avoid, on a marker or whose
-    centre is nearer (within a factor 1.25) to another point than to its own, on the path; plus a tenth per step
+    box is nearer (or within 4 px as near) to another point than to its own, on the path; plus a tenth per step
     down the order of preference of :data:`_LABEL_POSITIONS`. The choice is made by simulated annealing
     with a fixed seed (the same labels always get the same places), then polished label by label.
     """
@@ -171,7 +197,12 @@ def _place_waypoint_labels(views, texts, weights=(1000.0, 300.0, 40.0, 40.0)):
     todo = [i for i in range(k) if texts[i]]
     unary, pair = _label_costs(views, texts, todo, weights)
     state = _least_cost_places(unary, pair, todo)
-    return [_LABEL_POSITIONS[state[i]] if i in todo else "top center" for i in range(k)]
+    return [_positions(views)[state[i]] if i in todo else "top center" for i in range(k)]
+
+
+def _positions(views):
+    """The places a label may take in ``views``: beside its point, and with ``far`` views also further out."""
+    return _LABEL_POSITIONS + (_FAR_POSITIONS if any(v.get("far") for v in views) else ())
 
 
 def _label_costs(views, texts, todo, weights):
@@ -179,7 +210,8 @@ def _label_costs(views, texts, todo, weights):
     ``pair[i, a, j, b]`` of labels ``i`` at ``a`` and ``j`` at ``b`` together (k, npos, k, npos)."""
     k = len(texts)
     widths = [_text_width(t, _LABEL_FONT) for t in texts]
-    npos = len(_LABEL_POSITIONS)
+    places = _positions(views)
+    npos = len(places)
     w_label, w_avoid, w_marker, w_curve = weights
     pts0 = np.asarray(views[0]["points"], float)
     # coincident points (p0 and p11) share one label: neither is the other's neighbour
@@ -192,20 +224,26 @@ def _label_costs(views, texts, todo, weights):
         extra = np.reshape(v.get("markers", np.zeros((0, 2))), (-1, 2))
         per = []
         for i in range(k):
-            per.append([_label_box(p_, pts[i, 0], pts[i, 1], widths[i]) for p_ in _LABEL_POSITIONS])
+            per.append([_label_box(p_, pts[i, 0], pts[i, 1], widths[i]) for p_ in places])
             if i not in todo:
                 continue
             others = np.r_[pts[[j for j in range(k) if not same[i, j]]], extra]
             for a, box in enumerate(per[i]):
-                c = w_avoid * (_LABEL_POSITIONS[a] in v.get("forbid", {}).get(i, ()))
+                c = w_avoid * (places[a] in v.get("forbid", {}).get(i, ()))
                 c += sum(w_avoid for line in v.get("avoid", ()) if _box_hits_polyline(box, line))
                 c += sum(w_curve for line in v.get("curves", ()) if _box_hits_polyline(box, line))
                 inside = ((others[:, 0] > box[0] - 5) & (others[:, 0] < box[2] + 5)
                           & (others[:, 1] > box[1] - 5) & (others[:, 1] < box[3] + 5))
                 c += w_marker * int(inside.sum())
-                # a label (nearly) nearer to another point than to its own would seem to name that point
-                centre = np.array([(box[0] + box[2]) / 2, (box[1] + box[3]) / 2])
-                if len(others) and np.min(np.hypot(*(others - centre).T)) < 1.25 * np.hypot(*(centre - pts[i])):
+                if places[a].startswith("far "):
+                    # a leader line names the point: it must pass no other point
+                    c += _FAR_COST
+                    tip = np.clip(pts[i], box[:2], box[2:])
+                    if len(others) and np.min(_segment_distance(pts[i], tip, others)) < 6.0:
+                        c += w_marker
+                # a label nearer (or within 4 px as near) to another point than to its own would seem to name
+                # that point: distances from the label's box, as a reader's eye measures them
+                elif len(others) and np.min(_box_distance(box, others)) < _box_distance(box, pts[i][None])[0] + 4.0:
                     c += w_marker
                 unary[i, a] += c
         boxes.append(per)
@@ -350,8 +388,9 @@ def _top_views(traj, path_xy, arm_xy=None):
 #: figure's height, so the scale is the same on a phone-width page and a laptop screen: 413 px measured in
 #: Chromium on the reference path)
 _SCENE_SCALES = (380.0, 415.0, 450.0)
-#: the 3-D path figure's aspect ratio and camera: narrow enough to fit a phone-width page
-_SCENE_ASPECT = (1.3, 0.7, 0.7)
+#: the 3-D path figure's aspect ratio and camera: narrow enough, with its tick labels and axis titles, to fit a
+#: phone-width page
+_SCENE_ASPECT = (1.2, 0.65, 0.65)
 _SCENE_EYE = (0.9, -2.3, 1.0)
 
 
@@ -376,7 +415,8 @@ def _scene_views(traj, path_xyz, box, aspect, eye):
     z = traj.waypoints[:, 2]
     low = {int(i): {p_ for p_ in _LABEL_POSITIONS if p_.startswith("bottom")}
            for i in np.flatnonzero(z <= z.min() + 0.1 * (z.max() - z.min()))}
-    return [dict(points=pts * s, avoid=[a * s for a in arcs], curves=[path * s], forbid=low) for s in _SCENE_SCALES]
+    return [dict(points=pts * s, avoid=[a * s for a in arcs], curves=[path * s], forbid=low, far=True)
+            for s in _SCENE_SCALES]
 
 
 def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, height: int = 520) -> go.Figure:
@@ -400,13 +440,40 @@ def path_figure(traj: Trajectory, points: int = 2000, title: str | None = None, 
     aspect, eye = _SCENE_ASPECT, _SCENE_EYE
     box = _scene_box(traj, x[:, :3])
     coarse = traj.x[decimate(traj, 300), :3]      # labels are placed against a coarser copy of the path
-    for tr in _waypoint_traces(traj, 3, views=_scene_views(traj, coarse, box, aspect, eye)):
+    for tr in _waypoint_traces(traj, 3, text=False):
         fig.add_trace(tr)
-    axes = {f"{c}axis": dict(title_text=f"{c} (m)", range=[float(box[0][i]), float(box[1][i])])
+    # the labels are scene annotations, which plotly anchors exactly at their points and shifts by the pixels
+    # the placement assumed (WebGL text is drawn further from its point than a 2-D label)
+    labels = _merged_labels(traj, range(len(traj.labels)))
+    # off the path too: a label far out has room to keep clear of it
+    places = _place_waypoint_labels(_scene_views(traj, coarse, box, aspect, eye), labels,
+                                    weights=(1000.0, 300.0, 300.0, 200.0))
+    notes = [_scene_label(traj.waypoints[i], text, places[i]) for i, text in enumerate(labels) if text]
+    axes = {f"{c}axis": dict(title_text=f"{c} (m)", range=[float(box[0][i]), float(box[1][i])], nticks=4,
+                             tickfont=dict(size=11), title_font=dict(size=12))
             for i, c in enumerate("xyz")}
-    return finish_layout(fig, title or "The reference path in the base frame", height,
-                         scene=dict(**axes, aspectmode="manual", aspectratio=dict(zip("xyz", aspect)),
-                                    camera=dict(eye=dict(zip("xyz", eye)))))
+    finish_layout(fig, title or "The reference path in the base frame", height,
+                  scene=dict(**axes, aspectmode="manual", aspectratio=dict(zip("xyz", aspect)),
+                             camera=dict(eye=dict(zip("xyz", eye))), annotations=notes))
+    # a 3-D scene is drawn at a size set by its height: the side margins would only cut it on a phone
+    return fig.update_layout(margin=dict(l=0, r=0))
+
+
+def _scene_label(point, text, position) -> dict:
+    """A waypoint's label as a plotly scene annotation at ``point`` (3,), its box where :func:`_label_box` puts
+    a 2-D label at ``position`` (a plotly ``textposition``)."""
+    font = dict(size=_LABEL_FONT, color=PALETTE["reference"])
+    if position.startswith("far "):
+        # the label's centre where the placement put it, a thin leader line from it to the point
+        x0, y0, x1, y1 = _label_box(position, 0.0, 0.0, _text_width(text, _LABEL_FONT))
+        return dict(x=float(point[0]), y=float(point[1]), z=float(point[2]), text=text, showarrow=True,
+                    ax=round((x0 + x1) / 2, 1), ay=round((y0 + y1) / 2, 1), arrowhead=0, arrowwidth=1,
+                    arrowcolor="#888888", standoff=3, borderpad=0, font=font)
+    vert, horiz = position.split()
+    xanchor, xshift = {"center": ("center", 0.0), "right": ("left", 7.2), "left": ("right", -6.9)}[horiz]
+    yanchor, yshift = {"top": ("bottom", 7.2), "bottom": ("top", -5.2), "middle": ("middle", 1.0)}[vert]
+    return dict(x=float(point[0]), y=float(point[1]), z=float(point[2]), text=text, showarrow=False,
+                xanchor=xanchor, yanchor=yanchor, xshift=xshift, yshift=yshift, borderpad=0, font=font)
 
 
 def top_view_series(traj: Trajectory, points: int = 2000) -> dict:
@@ -558,7 +625,7 @@ def corner_figure(with_via: Trajectory, without: Trajectory, index: int, margin:
         fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=name, legendgroup=name, showlegend=False,
                                  line=dict(line, width=2.5)), row=2, col=1)
     pv = with_via.waypoints[index]
-    fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="top right",
+    fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="bottom right",
                              name=f"point {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
                   row=1, col=1)
     _corner_layout(fig, with_via, index, title or f"The corner at {lab}, from above, and the speed", height, zoom)
@@ -604,7 +671,8 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
                              line=dict(_STOP_LINE, width=2)), row=1, col=1)
     fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=f"stop at {lab}",
                              showlegend=False, line=dict(_STOP_LINE, width=2)), row=2, col=1)
-    a0 = len(values) // 2
+    # the slider opens at the plan's own anticipation (the reference's, as in the figures around it)
+    a0 = int(np.argmin(np.abs(values - float(wps[index].anticipation))))
     x, y, t, v = data[a0]
     name = "anticipation on the slider"
     fig.add_trace(go.Scatter(x=_r(x), y=_r(y), mode="lines", name=name, line=dict(_VIA_LINE, width=3)),
@@ -612,7 +680,7 @@ def anticipation_slider_figure(plan: dict, index: int, values=None, margin: floa
     fig.add_trace(go.Scatter(x=_r(t, 4), y=_r(v, 6), mode="lines", name=name, showlegend=False,
                              line=dict(_VIA_LINE, width=3)), row=2, col=1)
     pv = stop.waypoints[index]
-    fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="top right",
+    fig.add_trace(go.Scatter(x=[pv[0]], y=[pv[1]], mode="markers+text", text=[lab], textposition="bottom right",
                              name=f"point {lab}", marker=dict(symbol="diamond", size=10, color=_VIA_COLOUR)),
                   row=1, col=1)
     heading = title or f"Anticipation at {lab}"
@@ -653,11 +721,13 @@ def joint_profiles_figure(traj: Trajectory, points: int = 2000, p=None, title: s
                              line=dict(color=PALETTE["reference"], width=1.8)), row=3, col=1)
     km = int(np.argmin(w))
     fig.add_trace(go.Scatter(x=[round(float(traj.t[km]), 3)], y=[round(float(w[km]), 5)], mode="markers+text",
-                             text=[f"{w[km]:.4f} m² at {traj.t[km]:.1f} s"], textposition="top right",
+                             text=[f"{w[km]:.4f} m² at {traj.t[km]:.1f} s"], textposition="bottom right",
                              name="min w", marker=dict(size=10, color=PALETTE["force"], symbol="diamond")),
                   row=3, col=1)
     stacked_axes(fig, ("angle (°)", "d3 (m)", "w (m²)"))
-    fig.update_yaxes(rangemode="tozero", row=3, col=1)
+    # from a little under zero: the panel's "0" would sit on the time axis's "0" in the corner
+    top = float(w.max()) * 1.08
+    fig.update_yaxes(range=[-0.12 * top, top], row=3, col=1)
     _band_legend(fig)
     return finish_layout(fig, title or "Joint motion and manipulability", height, shapes=segment_shapes(traj))
 

@@ -189,3 +189,13 @@ def test_inertia_slider_figure_refuses_a_configuration_of_the_wrong_shape():
 @pytest.mark.parametrize("value, names", SAMPLE_COUNTS)
 def test_dynamics_figures_refuse_sample_counts_beyond_the_limit_before_any_work(build, args, count, value, names):
     check_sample_count_refused(build, args, count, value, names)
+
+
+def test_torque_terms_title_follows_the_dropdown():
+    from _plots_shared import run_figures
+    fig = run_figures()["dynamics_terms"]
+    (menu,) = fig.layout.updatemenus
+    titles = [b.args[1]["title.text"] for b in menu.buttons]
+    assert len(set(titles)) == len(titles) == 4
+    assert all(b.label in t for b, t in zip(menu.buttons, titles))
+    assert fig.layout.title.text == titles[0]

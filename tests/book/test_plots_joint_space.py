@@ -133,8 +133,14 @@ def test_top_view_labels_neither_overlap_nor_cover_the_arc(traj):
 
 def test_path_figure_labels_stay_apart_on_the_screen(traj):
     fig = path_figure(traj)
-    labels = [t for tr in fig.data if tr.name in ("stop point", "via point") for t in tr.text if t]
+    # scene annotations, anchored by plotly exactly at their points (crowded ones with a leader line)
+    notes = fig.layout.scene.annotations
+    labels = [a.text for a in notes]
     assert len(labels) == 11 and "p0 = p11" in labels
+    for a in notes:
+        i = traj.labels.index(a.text.split(" = ")[0])
+        assert np.allclose([a.x, a.y, a.z], traj.waypoints[i])
+    assert not any("text" in tr.mode for tr in fig.data if tr.name in ("stop point", "via point"))
     lay = fig.layout.scene
     for ax, c in ((lay.xaxis, 0), (lay.yaxis, 1), (lay.zaxis, 2)):
         # every point strictly inside the box (plotly hides a label drawn outside it)

@@ -176,3 +176,20 @@ def test_inverse_kinematics_panel_reports_unreachable_targets():
     quiet(setattr, panel.controls["px"], "value", 0.3)
     quiet(setattr, panel.controls["pz"], "value", 1.5)
     assert "stroke" in panel.last_error
+
+
+def test_dashed_triads_show_their_dashes_in_the_legend():
+    from scara.plots.kinematics import arm_figure
+    # plotly draws a legend line 30 px long, with dashes and gaps three line widths long each
+    fig = arm_figure([0.3, -1.2, 0.4, 0.1])
+    for t in fig.data:
+        if t.name.endswith("axes") and t.line.dash == "dash":
+            assert 3 * 3 * t.line.width <= 30, t.name
+
+
+def test_singular_labels_sit_off_the_curves():
+    from scara.plots.kinematics import determinant_figure
+    fig = determinant_figure()
+    (sing,) = [t for t in fig.data if t.name == "singular"]
+    assert list(sing.textposition) == ["middle left", "bottom right", "middle right"]
+    assert fig.layout.xaxis.range[0] < -200 and fig.layout.xaxis.range[1] > 200

@@ -88,7 +88,8 @@ def test_workspace_ellipses_figure_has_an_ellipse_per_position():
     (sl,) = fig.layout.sliders
     assert [s.label for s in sl.steps] == ["velocity", "force"]
     assert fig.data[1].name == "velocity ellipses" and tuple(fig.data[1].x) == tuple(sl.steps[0].args[0]["x"][0])
-    for step, key, dash in zip(sl.steps, ("velocity", "force"), ("solid", "dash")):
+    # the force ellipses dashed in dashes short enough (a few px) that each small outline stays a whole curve
+    for step, key, dash in zip(sl.steps, ("velocity", "force"), ("solid", "3px,2px")):
         data, layout, idx = step.args
         assert list(idx) == [1] and data["name"] == [f"{key} ellipses"] and data["line.dash"] == [dash]
         strokes = _strokes(*xy(go.Scatter(x=data["x"][0], y=data["y"][0])))
@@ -242,3 +243,33 @@ def test_manipulability_panel_reports_bad_scale():
     assert panel.last_error is None
     with pytest.raises(ScaraError):
         manipulability_panel(scale=-1.0)
+
+
+def test_workspace_ellipses_figure_draws_the_arms_of_one_ring():
+    # 24 arms tangle into a web over the ellipses: the arms of the outer ring only
+    fig = workspace_ellipses_figure(workspace_points())
+    arms = [s for s in _strokes(*xy(fig.data[0]))]
+    assert len(arms) == 8
+
+
+def _extent(fig, k, step=None):
+    x = fig.data[k].x if step is None else step.args[0]["x"][k]
+    y = fig.data[k].y if step is None else step.args[0]["y"][k]
+    x, y = np.array(x, dtype=float), np.array(y, dtype=float)
+    return np.nanmin(x), np.nanmax(x), np.nanmin(y), np.nanmax(y)
+
+
+def test_base_turn_figure_range_holds_the_ellipses_at_every_step():
+    fig = base_turn_figure()
+    xr, yr = fig.layout.xaxis.range, fig.layout.yaxis.range
+    for step in fig.layout.sliders[0].steps:
+        for k in range(len(step.args[0]["x"])):
+            x0, x1, y0, y1 = _extent(fig, k, step)
+            assert xr[0] < x0 and x1 < xr[1] and yr[0] < y0 and y1 < yr[1], (step.label, k)
+
+
+def test_reference_ellipses_figure_range_holds_the_reach_circle():
+    fig = reference_ellipses_figure()
+    xr, yr = fig.layout.xaxis.range, fig.layout.yaxis.range
+    r = 1.0
+    assert xr[0] < -r and xr[1] > r and yr[0] < -r and yr[1] > r

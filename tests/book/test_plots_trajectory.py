@@ -152,3 +152,20 @@ def test_trajectory_figures_refuse_counts_beyond_their_limits_before_any_work(tr
     message = refusal(getattr(plots, build), *args, **kwargs)
     for text in names:
         assert text in message
+
+
+def test_anticipation_slider_opens_at_the_plans_anticipation():
+    from scara.trajectory import reference_plan
+    plan = reference_plan()
+    fig = anticipation_slider_figure(plan, 4)
+    (sl,) = fig.layout.sliders
+    assert float(sl.steps[sl.active].label) == plan["waypoints"][4].anticipation == 2.0
+    assert fig.layout.title.text.startswith("Anticipation at p4: 2 s")
+
+
+def test_point_labels_sit_below_right_off_the_curves(traj):
+    # the curves run above-right of p4's corner and of the minimum of w: the labels go below-right
+    fig = joint_profiles_figure(traj)
+    (mark,) = [t for t in fig.data if t.name == "min w"]
+    assert mark.textposition == "bottom right"
+    assert fig.layout.yaxis3.range[0] < 0 < fig.layout.yaxis3.range[1]
