@@ -270,8 +270,9 @@ def _runs_animation(runs, p, panels: _RunPanels, *, fast: float, rest: float, he
                                                                    for _ in range(extra_rows)]
     arm_h = 0.62 / rows_arm if extra_rows else 1.0 / rows_arm
     heights = [arm_h] * rows_arm + [0.38 / extra_rows] * extra_rows if extra_rows else [arm_h] * rows_arm
+    # room between the rows for a panel's two-line title above the tick labels of the panel over it
     fig = make_subplots(rows=rows_arm + extra_rows, cols=cols, specs=specs, subplot_titles=titles,
-                        row_heights=heights, vertical_spacing=0.09, horizontal_spacing=0.06)
+                        row_heights=heights, vertical_spacing=0.13, horizontal_spacing=0.08)
     k = thin(r0.t.size, 1200)
     moving, data = [], [[] for _ in idx]
     pts = [r0.x_d[k, :2], [[0.0, 0.0]]]
@@ -300,9 +301,11 @@ def _runs_animation(runs, p, panels: _RunPanels, *, fast: float, rest: float, he
     for j in range(n):
         row, col = j // cols + 1, j % cols + 1
         ax_id = "" if j == 0 else str(j + 1)
-        fig.update_xaxes(range=xr, row=row, col=col, zeroline=False, constrain="domain")
+        # three ticks or so a panel: a phone gives each panel little more than 100 px
+        fig.update_xaxes(range=xr, row=row, col=col, zeroline=False, constrain="domain", nticks=3,
+                         tickfont_size=10)
         fig.update_yaxes(range=yr, row=row, col=col, zeroline=False, scaleanchor=f"x{ax_id}", scaleratio=1,
-                         title_text="y (m)", title_standoff=2)
+                         title_text="y (m)", title_standoff=2, nticks=4, tickfont_size=10)
     extra_moving, extra_data = panels.add_extra(fig, rows_arm + 1, idx)
     moving += extra_moving
     for d, ed in zip(data, extra_data):
@@ -375,7 +378,7 @@ def control_animation(runs, true_mass: float | None = None, p=None, fast: float 
     def extra(fig, row, idx):
         moving, data = _error_panel(fig, runs, row, idx,
                                     errs=[np.linalg.norm(r.e[:, :3], axis=1) for r in runs])
-        fig.update_yaxes(title_text="|p_d − p_e| (m)", row=row, col=1)
+        fig.update_yaxes(title_text="|e| (m)", row=row, col=1)     # short enough for the panel's height
         if est_runs:
             r = est_runs[0]
             m = np.asarray(r.payload_estimate, dtype=float)
