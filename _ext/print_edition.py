@@ -79,7 +79,7 @@ def serve(folder: Path):
 
 
 # A page is ready when MathJax has typeset it and plotly has drawn every figure.
-MATH_READY = ("() => !document.querySelector('.math') || (window.MathJax && MathJax.startup"
+MATH_READY = ("() => !document.querySelector('.math') || !!(window.MathJax && MathJax.startup"
               " && MathJax.startup.promise)")
 FIGURES_READY = """() => Array.from(document.querySelectorAll('.plotly-graph-div')).every(
   gd => !!gd._fullLayout && gd.querySelectorAll('.main-svg').length > 0)"""
@@ -88,7 +88,7 @@ FIGURES_READY = """() => Array.from(document.querySelectorAll('.plotly-graph-div
 def settle(pg, timeout: float = 30000) -> None:
     """Wait until MathJax has typeset the page and every plotly figure is drawn (and redrawn at this width)."""
     pg.wait_for_function(MATH_READY, timeout=timeout)
-    pg.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
+    pg.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise.then(() => true) : true")
     pg.wait_for_function(FIGURES_READY, timeout=timeout)
     pg.evaluate("() => Promise.all(Array.from(document.querySelectorAll('.plotly-graph-div'))"
                 ".map(gd => window.Plotly ? Plotly.Plots.resize(gd) : null))")

@@ -15,14 +15,17 @@ Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 3
 """
 from __future__ import annotations
 
-import functools
-import http.server
 import os
 import sys
-import threading
 from pathlib import Path
 
 import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "_ext"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from figure_checks import figure_problems  # noqa: E402
+from print_edition import FIGURES_READY, serve, settle  # noqa: E402, F401 - one page server, one wait for a drawn page
+from text_checks import text_problems  # noqa: E402
 
 # the width of a phone and of a laptop, in CSS pixels
 PHONE, LAPTOP = 390, 1280
@@ -113,25 +116,12 @@ LABEL_OVERLAPS = """() => {
   return out;
 }"""
 
-MATH_READY = "() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null"
-FIGURES_READY = """() => Array.from(document.querySelectorAll('.plotly-graph-div')).every(
-  gd => !!gd._fullLayout && gd.querySelectorAll('.main-svg').length > 0)"""
-
-
-def settle(pg, timeout: float = 30000) -> None:
-    """Wait until MathJax has typeset the page and every plotly figure is drawn (and redrawn at this width)."""
-    pg.wait_for_function("() => !document.querySelector('.math') || (window.MathJax && MathJax.startup"
-                         " && MathJax.startup.promise)", timeout=timeout)
-    pg.evaluate(MATH_READY)
-    pg.wait_for_function(FIGURES_READY, timeout=timeout)
-    pg.evaluate("() => Promise.all(Array.from(document.querySelectorAll('.plotly-graph-div'))"
-                ".map(gd => window.Plotly ? Plotly.Plots.resize(gd) : null))")
-    pg.wait_for_timeout(200)
-
-
 def layout_problems(pg, width: int) -> list[str]:
-    """Every problem of the page at this viewport width (the page is loaded and settled)."""
-    problems = list(pg.evaluate(LABEL_OVERLAPS))
+    """Every problem of the page at this viewport width (the page is loaded and settled): the overlaps above,
+    the figures' own checks (``figure_checks.py``) and, at a laptop's width, the text's (``text_checks.py``)."""
+    problems = list(pg.evaluate(LABEL_OVERLAPS)) + figure_problems(pg, width)
+    if width >= LAPTOP:
+        problems += text_problems(pg)
     if width <= PHONE:
         problems += pg.evaluate(WIDE_EQUATIONS) + pg.evaluate(WIDE_TABLES)
     return problems
@@ -142,17 +132,6 @@ def unavailable(reason: str):
     if os.environ.get("CI", "").lower() == "true":
         pytest.fail(f"browser test cannot run under CI=true: {reason}")
     pytest.skip(reason)
-
-
-def serve(folder: Path):
-    """Serve ``folder`` on 127.0.0.1 (a free port) from a daemon thread: ``(server, base URL)``."""
-    class Quiet(http.server.SimpleHTTPRequestHandler):
-        def log_message(self, *args):
-            pass
-
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(folder)))
-    threading.Thread(target=httpd.serve_forever, daemon=True).start()
-    return httpd, f"http://127.0.0.1:{httpd.server_address[1]}/"
 
 
 def main(argv: list[str]) -> int:

@@ -19,9 +19,9 @@ human-readable problems, empty when the page is clean). :func:`text_problems` ru
 - ``NUMBERING``: the figures, tables, exercises and equations of a page are numbered from 1 without a gap, each
   kind on its own, with the chapter's number or the appendix's letter in front (Fig. A.1, (A.1)).
 
-Two checks run on the sources and on the build without a browser, as pytest tests of this module:
-:func:`test_no_output_between_an_exercise_and_its_solution` (the notebooks' form of ``EXERCISE_ANSWERS``) and
-:func:`test_equal_quantities_print_equal` (chapter 3's comparison of the three motions prints equal values
+Two checks run on the sources and on the build without a browser, in ``test_text.py``:
+``test_no_output_between_an_exercise_and_its_solution`` (the notebooks' form of ``EXERCISE_ANSWERS``, with
+:func:`exercise_output_problems`) and ``test_equal_quantities_print_equal`` (chapter 3's comparison of the three motions prints equal values
 equal: the quill's peak speed of 0.05625 m/s is one number in two motions).
 
 Run alone on a build (it serves the folder on 127.0.0.1 and opens every page of ``book/``)::
@@ -36,7 +36,6 @@ import re
 import sys
 from pathlib import Path
 
-import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 HTML = Path(os.environ.get("SCARA_BOOK_HTML", ROOT / "_build" / "html"))
@@ -293,12 +292,6 @@ def exercise_output_problems(nb_path: Path) -> list[str]:
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
 
 
-@pytest.mark.parametrize("nb", NOTEBOOKS, ids=lambda p: p.name)
-def test_no_output_between_an_exercise_and_its_solution(nb):
-    problems = exercise_output_problems(nb)
-    assert not problems, "\n".join(problems)
-
-
 def _table_rows(html: str, caption_words: str) -> dict:
     """The rows (header -> cell texts) of the first pandas table of ``html`` whose row headers include
     ``caption_words``."""
@@ -332,33 +325,6 @@ def _table_rows(html: str, caption_words: str) -> dict:
     p = Rows()
     p.feed(html)
     return next((t for t in p.tables if caption_words in t), {})
-
-
-def test_equal_quantities_print_equal():
-    """Chapter 3's comparison of the three motions: values equal to 1e-12 (relative) print the same characters
-    (the quill's peak speed, 0.05625 m/s in the operational and the cubic motion)."""
-    page = HTML / "book" / "03_trajectory.html"
-    if not page.exists():
-        pytest.skip("the book is not built")
-    from scara import reference_trajectory  # noqa: PLC0415
-    from scara.trajectory import compare_joint_space  # noqa: PLC0415
-
-    rows = compare_joint_space(reference_trajectory())
-    table = _table_rows(page.read_text(), "peak ḋ3 (cm/s)")
-    assert table, "chapter 3's comparison table is not in the built page"
-    values = {"peak ḋ3 (cm/s)": [100 * r["max_joint_speed"][2] for r in rows],
-              "motion ends (s)": [r["motion_end"] for r in rows]}
-    for k in range(4):
-        values[f"peak |τ{k + 1}| ({'N' if k == 2 else 'N m'})"] = [r["max_torque"][k] for r in rows]
-    unequal = []
-    for name, vals in values.items():
-        shown = table.get(name)
-        assert shown and len(shown) == len(vals), (name, shown)
-        for i in range(len(vals)):
-            for j in range(i + 1, len(vals)):
-                if abs(vals[i] - vals[j]) <= 1e-12 * max(abs(vals[i]), abs(vals[j])) and shown[i] != shown[j]:
-                    unequal.append(f"{name}: {vals[i]!r} and {vals[j]!r} print as {shown[i]} and {shown[j]}")
-    assert not unequal, "equal values printed differently: " + "; ".join(unequal)
 
 
 # --------------------------------------------------------------------------------------------------
