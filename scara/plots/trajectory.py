@@ -100,7 +100,7 @@ def timing_law_figure(law: Trapezoidal, points: int = 401, title: str | None = N
     for row, (y, name) in enumerate(((s, "s"), (sd, "ṡ"), (sdd, "s̈")), 1):
         fig.add_trace(go.Scatter(x=_r(tau, 4), y=_r(y, 6), mode="lines", name=name,
                                  line=dict(color=PALETTE["reference"], width=2, dash=DASHES[row - 1])), row=row, col=1)
-    stacked_axes(fig, ("s (m)", "ṡ (m/s)", "s̈ (m/s²)"), "time since the segment started, τ (s)")
+    stacked_axes(fig, ("s (m)", "ṡ (m/s)", "s̈ (m/s²)"), "time in the segment, τ (s)")   # fits 390 px
     shapes = [dict(type="rect", xref="x", yref="paper", x0=a, x1=b, y0=0, y1=1, layer="below", fillcolor=_VIA_COLOUR,
                    opacity=0.2, line=dict(width=0)) for a, b in ((0.0, tc), (T - tc, T))]
     fig.add_trace(go.Scatter(x=[None], y=[None], mode="lines", name="blends", showlegend=True, hoverinfo="skip",
@@ -597,7 +597,7 @@ def _corner_layout(fig, traj, i, title, height, zoom, **kw):
     fig.update_yaxes(title_text="y (m)", range=[pv[1] - zoom, pv[1] + zoom], scaleanchor="x", scaleratio=1,
                      row=1, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_yaxes(title_text="speed |ṗ| (m/s)", rangemode="tozero", row=2, col=1)
+    fig.update_yaxes(title_text="|ṗ| (m/s)", rangemode="tozero", row=2, col=1)   # no longer than its panel
 
 
 def _corner_grid():
