@@ -497,6 +497,10 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
                     height: int = 460) -> go.Figure:
     """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration.
 
+    The waypoints' labels are annotations: on a phone-width page six waypoints stand on one line within 80 px
+    (p9 and p10 6 px apart), where no place beside a marker is nearer to it than to its neighbours; such a label
+    goes further out with a thin leader line to its point, as in :func:`path_figure`.
+
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
     points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
@@ -507,9 +511,19 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
         fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at t = 0", opacity=0.5))
     fig.add_trace(go.Scatter(x=series["path"][0], y=series["path"][1], mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
-    for tr, data in zip(_waypoint_traces(traj, 2), (series["stop"], series["via"])):
-        fig.add_trace(tr.update(textposition=data["textposition"]))
-    finish_layout(fig, title or "The path seen from above", height)
+    for tr in _waypoint_traces(traj, 2, text=False):
+        fig.add_trace(tr)
+    arm_xy = top_view_arm(traj.q0, traj.params)
+    views = [dict(v, far=True) for v in _top_views(traj, traj.x[decimate(traj, 300), :2],
+                                                   np.c_[arm_xy.x, arm_xy.y])]
+    labels = _merged_labels(traj, range(len(traj.labels)))
+    # off the path and the arm too: a label far out has room to keep clear of them
+    places = _place_waypoint_labels(views, labels, weights=(1000.0, 300.0, 300.0, 200.0))
+    notes = [dict(_scene_label(traj.waypoints[i], text, places[i]), xref="x", yref="y")
+             for i, text in enumerate(labels) if text]
+    for a in notes:
+        a.pop("z")
+    finish_layout(fig, title or "The path seen from above", height, annotations=notes)
     fig.update_xaxes(title_text="x (m)")
     fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1)
     return fig
