@@ -611,7 +611,7 @@ def _corner_layout(fig, traj, i, title, height, zoom, **kw):
     fig.update_yaxes(title_text="y (m)", range=[pv[1] - zoom, pv[1] + zoom], scaleanchor="x", scaleratio=1,
                      row=1, col=1)
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    fig.update_yaxes(title_text="speed |ṗ| (m/s)", rangemode="tozero", row=2, col=1)
+    fig.update_yaxes(title_text="|ṗ| (m/s)", rangemode="tozero", row=2, col=1)
 
 
 def _corner_grid():
