@@ -236,10 +236,15 @@ def _label_costs(views, texts, todo, weights):
                           & (others[:, 1] > box[1] - 5) & (others[:, 1] < box[3] + 5))
                 c += w_marker * int(inside.sum())
                 if places[a].startswith("far "):
-                    # a leader line names the point: it must pass no other point
+                    # a leader line names the point: it must pass no other point once it has left its own
+                    # marker (two points a few px apart, p9 and p10 of the reference path in 3-D, each get a
+                    # line leaving away from the other), and no other point may sit on its own (within 4 px)
                     c += _FAR_COST
                     tip = np.clip(pts[i], box[:2], box[2:])
-                    if len(others) and np.min(_segment_distance(pts[i], tip, others)) < 6.0:
+                    step = tip - pts[i]
+                    start = pts[i] + step * min(1.0, 6.0 / max(float(np.hypot(*step)), 1e-9))
+                    if len(others) and (np.min(_segment_distance(start, tip, others)) < 6.0
+                                        or np.min(np.hypot(*(others - pts[i]).T)) < 4.0):
                         c += w_marker
                 # a label nearer (or within 4 px as near) to another point than to its own would seem to name
                 # that point: distances from the label's box, as a reader's eye measures them
