@@ -378,7 +378,9 @@ def control_animation(runs, true_mass: float | None = None, p=None, fast: float 
     def extra(fig, row, idx):
         moving, data = _error_panel(fig, runs, row, idx,
                                     errs=[np.linalg.norm(r.e[:, :3], axis=1) for r in runs])
-        fig.update_yaxes(title_text="|e| (m)", row=row, col=1)     # short enough for the panel's height
+        # a title short enough for the panel's height; the errors span ten decades in a panel about 60 px tall,
+        # where four labels 10^k (20 px each with their exponent) ran into each other: one every four decades
+        fig.update_yaxes(title_text="|e| (m)", dtick=4, row=row, col=1)
         if est_runs:
             r = est_runs[0]
             m = np.asarray(r.payload_estimate, dtype=float)

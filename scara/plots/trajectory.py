@@ -236,10 +236,15 @@ def _label_costs(views, texts, todo, weights):
                           & (others[:, 1] > box[1] - 5) & (others[:, 1] < box[3] + 5))
                 c += w_marker * int(inside.sum())
                 if places[a].startswith("far "):
-                    # a leader line names the point: it must pass no other point
+                    # a leader line names the point: it must pass no other point once it has left its own
+                    # marker (two points a few px apart, p9 and p10 of the reference path in 3-D, each get a
+                    # line leaving away from the other), and no other point may sit on its own (within 4 px)
                     c += _FAR_COST
                     tip = np.clip(pts[i], box[:2], box[2:])
-                    if len(others) and np.min(_segment_distance(pts[i], tip, others)) < 6.0:
+                    step = tip - pts[i]
+                    start = pts[i] + step * min(1.0, 6.0 / max(float(np.hypot(*step)), 1e-9))
+                    if len(others) and (np.min(_segment_distance(start, tip, others)) < 6.0
+                                        or np.min(np.hypot(*(others - pts[i]).T)) < 4.0):
                         c += w_marker
                 # a label nearer (or within 4 px as near) to another point than to its own would seem to name
                 # that point: distances from the label's box, as a reader's eye measures them
@@ -368,14 +373,14 @@ def _waypoint_traces(traj, dims=3, showlegend=True, text=True, views=None):
     return out
 
 
-def _top_views(traj, path_xy, arm_xy=None):
-    """The label-placement views of a top view (:func:`_place_waypoint_labels`) at each of :data:`_TOP_VIEW_SCALES`:
+def _top_views(traj, path_xy, arm_xy=None, scales=_TOP_VIEW_SCALES):
+    """The label-placement views of a top view (:func:`_place_waypoint_labels`) at each of ``scales`` (px per m):
     the waypoints, the arcs to keep clear, the path and the arm."""
     arcs = [traj.x[decimate(traj, 60, traj.segment_start[j], traj.segment_end[j]), :2]
             for j, kind in enumerate(traj.segment_kinds) if kind == "arc"]
     flip = np.array([1.0, -1.0])
     views = []
-    for s in _TOP_VIEW_SCALES:
+    for s in scales:
         curves = [np.asarray(path_xy, float) * flip * s]
         if arm_xy is not None:
             curves.append(np.asarray(arm_xy, float) * flip * s)
@@ -497,6 +502,10 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
                     height: int = 460) -> go.Figure:
     """The path seen from above (x-y plane of the base frame, m) with the arm in its start configuration.
 
+    The waypoints' labels are annotations: on a phone-width page six waypoints stand on one line within 80 px
+    (p9 and p10 6 px apart), where no place beside a marker is nearer to it than to its neighbours; such a label
+    goes further out with a thin leader line to its point, as in :func:`path_figure`.
+
     Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
     raises :class:`ScaraError` before any work."""
     points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
@@ -507,9 +516,19 @@ def top_view_figure(traj: Trajectory, points: int = 2000, arm: bool = True, titl
         fig.add_trace(top_view_arm(traj.q0, traj.params, name="arm at t = 0", opacity=0.5))
     fig.add_trace(go.Scatter(x=series["path"][0], y=series["path"][1], mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
-    for tr, data in zip(_waypoint_traces(traj, 2), (series["stop"], series["via"])):
-        fig.add_trace(tr.update(textposition=data["textposition"]))
-    finish_layout(fig, title or "The path seen from above", height)
+    for tr in _waypoint_traces(traj, 2, text=False):
+        fig.add_trace(tr)
+    arm_xy = top_view_arm(traj.q0, traj.params)
+    views = [dict(v, far=True) for v in _top_views(traj, traj.x[decimate(traj, 300), :2],
+                                                   np.c_[arm_xy.x, arm_xy.y])]
+    labels = _merged_labels(traj, range(len(traj.labels)))
+    # off the path and the arm too: a label far out has room to keep clear of them
+    places = _place_waypoint_labels(views, labels, weights=(1000.0, 300.0, 300.0, 200.0))
+    notes = [dict(_scene_label(traj.waypoints[i], text, places[i]), xref="x", yref="y")
+             for i, text in enumerate(labels) if text]
+    for a in notes:
+        a.pop("z")
+    finish_layout(fig, title or "The path seen from above", height, annotations=notes)
     fig.update_xaxes(title_text="x (m)")
     fig.update_yaxes(title_text="y (m)", scaleanchor="x", scaleratio=1)
     return fig
@@ -823,22 +842,37 @@ EDITOR_MARKER_NAME = Text("editing p{edit_point:.0f}")
 EDITOR_PROFILES_TITLE = "Its position, velocity and acceleration (orange: via overlaps)"
 
 
+#: the drawing scales (px per m) of the waypoint editor's top view: its height sets its scale, about 559 px per m
+#: on a phone-width page and a laptop screen alike (measured in Chromium on the reference plan)
+_EDITOR_SCALES = (520.0, 560.0, 600.0)
+
+
 def editor_labels(traj: Trajectory) -> dict:
-    """The waypoint editor's labels, fixed when it opens: one per waypoint (coincident points labelled each, so
-    that moving one apart leaves both named) and where each sits around its marker, placed against the plan it
-    opens on (:func:`_place_waypoint_labels`) and kept there while the points move."""
+    """The waypoint editor's labels, fixed when it opens: the name of each waypoint (``labels``, shown on hover),
+    the text drawn beside it (``text``) and where it sits around its marker (``positions``), placed at the
+    editor's own scale (:data:`_EDITOR_SCALES`) against the plan it opens on (:func:`_place_waypoint_labels`) and
+    kept there while the points move.
+
+    A waypoint on an earlier one (p11 on p0 in the reference plan) is drawn without text: the one free place
+    beside p0 (the arc, the arm and p1 are all around it) holds one label, and two labels there would each be as
+    near to the other's point. Its name stays in its hover text, in the point dropdown and, while it is edited,
+    in the ring's legend entry; moved apart, it is drawn unlabelled."""
     traj = _check(traj)
     arm = top_view_arm(traj.q0, traj.params)
-    views = _top_views(traj, traj.x[decimate(traj, 300), :2], np.c_[arm.x, arm.y])
+    views = _top_views(traj, traj.x[decimate(traj, 300), :2], np.c_[arm.x, arm.y], scales=_EDITOR_SCALES)
     labels = list(traj.labels)
-    return dict(labels=labels, positions=_place_waypoint_labels(views, labels))
+    text = [name if not any(np.linalg.norm(traj.waypoints[j] - traj.waypoints[i]) < 1e-9 for j in range(i))
+            else "" for i, name in enumerate(labels)]
+    positions = _place_waypoint_labels(views, text)
+    # drawn as a space: plotly drops the text of another point of a trace with gaps (NaN) when one text is empty
+    return dict(labels=labels, text=[t or " " for t in text], positions=positions)
 
 
-def _editor_points(values, labels, positions, via):
+def _editor_points(values, labels, text, positions, via):
     name, symbol, colour = (("via point", "diamond", _VIA_COLOUR) if via else
                             ("stop point", "circle", PALETTE["reference"]))
     key = "via" if via else "stop"
-    return go.Scatter(x=values[f"{key}_x"], y=values[f"{key}_y"], mode="markers+text", name=name, text=list(labels),
+    return go.Scatter(x=values[f"{key}_x"], y=values[f"{key}_y"], mode="markers+text", name=name, text=list(text),
                       textposition=list(positions), textfont=dict(size=_LABEL_FONT), hovertext=list(labels),
                       hoverinfo="text", showlegend=True, marker=dict(size=10, symbol=symbol, color=colour,
                                                     line=dict(width=1, color="white")))
@@ -855,7 +889,8 @@ def editor_top_figure(values, labels: dict, height: int = 460) -> go.Figure:
     fig.add_trace(go.Scatter(x=values["path_x"], y=values["path_y"], mode="lines", name="path",
                              line=dict(color=PALETTE["reference"], width=2)))
     for via in (False, True):
-        fig.add_trace(_editor_points(values, labels["labels"], labels["positions"], via))
+        fig.add_trace(_editor_points(values, labels["labels"], labels.get("text", labels["labels"]),
+                                     labels["positions"], via))
     fig.add_trace(go.Scatter(x=[values["edit_x"]], y=[values["edit_y"]], mode="markers",
                              name=EDITOR_MARKER_NAME.format(values), hoverinfo="skip",
                              marker=dict(size=18, symbol="circle-open", color=_EDITING_COLOUR, line=dict(width=3))))

@@ -114,21 +114,35 @@ def _labels(fig):
             for x, y, text, pos in zip(tr.x, tr.y, tr.text, tr.textposition) if text]
 
 
+def _note_box(a, s):
+    """The screen box (px, y down) of a 2-D label annotation ``a`` of a top view drawn at ``s`` px per m."""
+    x, y, w = a.x * s, -a.y * s, _text_width(a.text, 12)
+    if a.showarrow:                          # a label further out, centred where its leader line starts
+        return x + a.ax - w / 2, y + a.ay - 7.0, x + a.ax + w / 2, y + a.ay + 7.0
+    x0 = {"left": x + a.xshift, "right": x + a.xshift - w, "center": x - w / 2}[a.xanchor]
+    y0 = {"bottom": y - a.yshift - 14.0, "top": y - a.yshift, "middle": y - a.yshift - 7.0}[a.yanchor]
+    return x0, y0, x0 + w, y0 + 14.0
+
+
 def test_top_view_labels_neither_overlap_nor_cover_the_arc(traj):
     fig = top_view_figure(traj)
-    labels = _labels(fig)
-    assert {t for *_, t, _ in labels} >= {"p0 = p11", "p1", "p9", "p10"} and len(labels) == 11
+    notes = fig.layout.annotations
+    assert {a.text for a in notes} >= {"p0 = p11", "p1", "p9", "p10"} and len(notes) == 11
+    for a in notes:                          # each anchored at its waypoint
+        i = traj.labels.index(a.text.split(" = ")[0])
+        assert np.allclose([a.x, a.y], traj.waypoints[i, :2]) and (a.xref, a.yref) == ("x", "y")
+    assert not any("text" in tr.mode for tr in fig.data if tr.name in ("stop point", "via point"))
     arc = traj.x[(traj.t >= traj.segment_start[10]) & (traj.t <= traj.segment_end[10]), :2][::50]
     for s in _TOP_VIEW_SCALES:
-        boxes = [(_label_box(pos, x * s, -y * s, _text_width(text, 12)), text) for x, y, text, pos in labels]
+        boxes = [(_note_box(a, s), a.text) for a in notes]
         for i, (a, ta) in enumerate(boxes):
             assert not _box_hits_polyline(a, arc * [s, -s]), (s, ta)
             for b, tb in boxes[i + 1:]:
                 assert not _boxes_overlap(a, b, pad=0.0), (s, ta, tb)
-    # the coincident points share one label, and the live editor redraws the same places
-    assert sum("p11" in t for *_, t, _ in labels) == 1
+    # the coincident points share one label
+    assert sum("p11" in a.text for a in notes) == 1
     series = top_view_series(traj)
-    assert list(series["stop"]["textposition"]) == list(fig.data[2].textposition)
+    assert sum("p11" in t for t in series["stop"]["text"]) == 1
 
 
 def test_path_figure_labels_stay_apart_on_the_screen(traj):

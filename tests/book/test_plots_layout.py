@@ -33,7 +33,7 @@ from scara.plots._common import (
 from scara.plots.clik import gain_steps_figure
 from scara.plots.kinematics import inverse_kinematics_slider_figure
 from scara.plots.layout import (
-    PHONE_PLOT_WIDTH, _text_width, base_layout, finish_layout, legend_entries, legend_rows, stacked_axes,
+    PHONE_PLOT_WIDTH, TEMPLATE, _text_width, base_layout, finish_layout, legend_entries, legend_rows, stacked_axes,
     without_template,
 )
 from scara.plots.manipulability import base_turn_figure
@@ -105,11 +105,11 @@ def test_legend_entries_leave_out_what_the_page_does_not_list():
 
 
 def test_without_template_drops_the_template_inside_the_block_only():
-    assert base_layout()["template"] == "plotly_white"
+    assert base_layout()["template"] == TEMPLATE
     with without_template():
         assert "template" not in base_layout("t", 300)
         assert go.Figure().layout.template.layout.to_plotly_json() == {}
-    assert base_layout()["template"] == "plotly_white"
+    assert base_layout()["template"] == TEMPLATE
     assert go.Figure().layout.template.layout.to_plotly_json() != {}
 
 
