@@ -85,7 +85,11 @@
       if (lum !== null && lum < 0.25) u[`shapes[${i}].line.color`] = line;
     });
     ["sliders", "updatemenus"].forEach((kind) => (full[kind] || []).forEach((m, i) => {
-      Object.assign(u, { [`${kind}[${i}].font.color`]: text, [`${kind}[${i}].bgcolor`]: surface });
+      // a transparent font stays transparent: an animation's slider hides its step labels (one per frame) so
+      // (painted, they would be a row of dots under the rail)
+      const hidden = (rgba(get(m, "font.color")) || [0, 0, 0, 1])[3] === 0;
+      if (!hidden) u[`${kind}[${i}].font.color`] = text;
+      u[`${kind}[${i}].bgcolor`] = surface;
       if (kind === "sliders") Object.assign(u, {
         [`sliders[${i}].currentvalue.font.color`]: text, [`sliders[${i}].bordercolor`]: line,
         [`sliders[${i}].tickcolor`]: line, [`sliders[${i}].activebgcolor`]: muted,
