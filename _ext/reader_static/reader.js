@@ -1,6 +1,6 @@
 /* What the reader sees: figures that follow the dark theme, a text alternative on every figure, search results
- * without raw TeX, tables whose numbers never break, scroll cues on what scrolls sideways. Loaded on every
- * page of the book (see _ext/reader.py). */
+ * without raw TeX, tables whose numbers never break, formulas that fit their line, scroll cues on what scrolls
+ * sideways. Loaded on every page of the book (see _ext/reader.py). */
 (function () {
   "use strict";
 
@@ -243,6 +243,32 @@
     });
   }
 
+  /** An inline formula wider than its line gets a line of its own (reader.css: .scara-wide-math), made smaller
+   * to fit when that costs at most a quarter of its size; otherwise it scrolls there, with a cue. Measured again
+   * whenever the column changes (the width of the window, a folded solution opened). */
+  function fitInlineMath() {
+    const all = Array.from(document.querySelectorAll("article mjx-container:not([display='true'])"))
+      .filter((c) => !c.closest("table, .js-plotly-plot, .scara-page-panel"));
+    // every write before every read: one layout for the whole page
+    all.forEach((c) => {
+      if (c.classList.contains("scara-wide-math")) { c.classList.remove("scara-wide-math"); c.style.fontSize = c.__scaraSize; }
+    });
+    const wide = all.map((c) => {
+      const width = c.getBoundingClientRect().width;
+      if (!width) return null;
+      const block = c.parentElement.closest("p, li, dd, dt, figcaption, blockquote, section, div");
+      if (!block) return null;
+      const s = getComputedStyle(block);
+      const room = block.clientWidth - parseFloat(s.paddingLeft) - parseFloat(s.paddingRight);
+      return width > room + 0.5 ? { c, scale: room / width, size: parseFloat(getComputedStyle(c).fontSize) } : null;
+    }).filter(Boolean);
+    wide.forEach(({ c, scale, size }) => {
+      c.__scaraSize = c.style.fontSize;
+      c.classList.add("scara-wide-math");
+      if (scale >= 0.75) c.style.fontSize = (size * scale * 0.97).toFixed(2) + "px";
+    });
+  }
+
   /** A table wider than its box gets the compact style (reader.css: .scara-compact). */
   function fitTables() {
     const tables = Array.from(document.querySelectorAll("article table"))
@@ -281,6 +307,7 @@
     markNumbers();
     keepNumbers(document.querySelector("article") || document.body);
     fitTables();
+    fitInlineMath();
     cues();
   }
 
