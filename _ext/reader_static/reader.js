@@ -1,5 +1,6 @@
 /* What the reader sees: figures that follow the dark theme, a text alternative on every figure, search results
- * without raw TeX. Loaded on every page of the book (see _ext/reader.py). */
+ * without raw TeX, tables whose numbers never break, formulas that fit their line, scroll cues on what scrolls
+ * sideways. Loaded on every page of the book (see _ext/reader.py). */
 (function () {
   "use strict";
 
@@ -85,7 +86,11 @@
       if (lum !== null && lum < 0.25) u[`shapes[${i}].line.color`] = line;
     });
     ["sliders", "updatemenus"].forEach((kind) => (full[kind] || []).forEach((m, i) => {
-      Object.assign(u, { [`${kind}[${i}].font.color`]: text, [`${kind}[${i}].bgcolor`]: surface });
+      // a transparent font stays transparent: an animation's slider hides its step labels (one per frame) so
+      // (painted, they would be a row of dots under the rail)
+      const hidden = (rgba(get(m, "font.color")) || [0, 0, 0, 1])[3] === 0;
+      if (!hidden) u[`${kind}[${i}].font.color`] = text;
+      u[`${kind}[${i}].bgcolor`] = surface;
       if (kind === "sliders") Object.assign(u, {
         [`sliders[${i}].currentvalue.font.color`]: text, [`sliders[${i}].bordercolor`]: line,
         [`sliders[${i}].tickcolor`]: line, [`sliders[${i}].activebgcolor`]: muted,
@@ -188,6 +193,139 @@
     return themeAll();
   }
 
+  // ---- the text column: numbers that never break, formulas that fit, scroll cues -----------------------------
+  // a table cell that holds a number and nothing else (a sign, digits, an exponent, a unit symbol)
+  const NUMBER_CELL = /^[-+\u2212\u00b1]?[\d\s.,:\u00d7\u2212\u2013+\-^()\/%\u00b0eE\u2070-\u209f]*\d[\d\s.,:\u00d7\u2212\u2013+\-^()\/%\u00b0eE\u2070-\u209f]*$/;
+
+  function markNumbers() {
+    document.querySelectorAll("article table td, article table th").forEach((cell) => {
+      cell.classList.toggle("scara-number", NUMBER_CELL.test(cell.textContent.trim()));
+    });
+  }
+
+  // a number written with a signed exponent, which a browser may break after its sign ("3.03e-" / "05")
+  const EXPONENT = /[-+\u2212]?\d[\d.,]*[eE][-+\u2212]\d+/g;
+
+  /** Every number with a signed exponent in the tables under ``root`` kept on one line: wrapped in a
+   * span.scara-nobr (the text is unchanged). */
+  function keepNumbers(root) {
+    const texts = [];
+    root.querySelectorAll("table td, table th").forEach((cell) => {
+      const walk = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
+      for (let n = walk.nextNode(); n; n = walk.nextNode()) {
+        EXPONENT.lastIndex = 0;
+        if (EXPONENT.test(n.data) && !n.parentElement.closest(".scara-nobr, mjx-container")) texts.push(n);
+      }
+    });
+    texts.forEach((n) => {
+      const parts = [];
+      let last = 0;
+      EXPONENT.lastIndex = 0;
+      for (const m of n.data.matchAll(EXPONENT)) {
+        if (m.index > last) parts.push(document.createTextNode(n.data.slice(last, m.index)));
+        const span = document.createElement("span");
+        span.className = "scara-nobr";
+        span.textContent = m[0];
+        parts.push(span);
+        last = m.index + m[0].length;
+      }
+      if (last < n.data.length) parts.push(document.createTextNode(n.data.slice(last)));
+      n.replaceWith(...parts);
+    });
+  }
+
+  /** The live panels rewrite their table of results at each move: its numbers are kept whole each time. */
+  function watchPanels() {
+    document.querySelectorAll("[data-scara-panel]").forEach((panel) => {
+      new MutationObserver((records) => {
+        if (records.some((r) => r.target.closest && r.target.closest(".scara-panel-info"))) keepNumbers(panel);
+      }).observe(panel, { childList: true, subtree: true });
+    });
+  }
+
+  /** An inline formula wider than its line gets a line of its own (reader.css: .scara-wide-math), made smaller
+   * to fit when that costs at most a quarter of its size; otherwise it scrolls there, with a cue. Measured again
+   * whenever the column changes (the width of the window, a folded solution opened). */
+  function fitInlineMath() {
+    const all = Array.from(document.querySelectorAll("article mjx-container:not([display='true'])"))
+      .filter((c) => !c.closest("table, .js-plotly-plot, .scara-page-panel"));
+    // every write before every read: one layout for the whole page
+    all.forEach((c) => {
+      if (c.classList.contains("scara-wide-math")) { c.classList.remove("scara-wide-math"); c.style.fontSize = c.__scaraSize; }
+    });
+    const wide = all.map((c) => {
+      const width = c.getBoundingClientRect().width;
+      if (!width) return null;
+      const block = c.parentElement.closest("p, li, dd, dt, figcaption, blockquote, section, div");
+      if (!block) return null;
+      const s = getComputedStyle(block);
+      const room = block.clientWidth - parseFloat(s.paddingLeft) - parseFloat(s.paddingRight);
+      return width > room + 0.5 ? { c, scale: room / width, size: parseFloat(getComputedStyle(c).fontSize) } : null;
+    }).filter(Boolean);
+    wide.forEach(({ c, scale, size }) => {
+      c.__scaraSize = c.style.fontSize;
+      c.classList.add("scara-wide-math");
+      if (scale >= 0.75) c.style.fontSize = (size * scale * 0.97).toFixed(2) + "px";
+    });
+  }
+
+  /** A table wider than its box gets the compact style (reader.css: .scara-compact). */
+  function fitTables() {
+    const tables = Array.from(document.querySelectorAll("article table"))
+      .filter((t) => !t.closest(".js-plotly-plot, .scara-page-panel"));
+    tables.forEach((t) => t.classList.remove("scara-compact"));
+    tables.filter((t) => {
+      const box = t.parentElement;
+      return t.getBoundingClientRect().width > 0 && box && t.getBoundingClientRect().width > box.clientWidth + 0.5;
+    }).forEach((t) => t.classList.add("scara-compact"));
+  }
+
+  // the boxes that may scroll sideways: wide tables, the outputs of cells, display equations, wide inline formulas
+  const SCROLLERS = "article .pst-scrollable-table-container, article div.cell_output .output, "
+                  + "article div.math > mjx-container, article mjx-container.scara-wide-math";
+
+  /** A box that scrolls sideways is marked on each edge where its content continues (reader.css draws a shadow
+   * there): scara-more-left, scara-more-right. */
+  function cue(box) {
+    const o = getComputedStyle(box).overflowX;
+    const more = o === "auto" || o === "scroll" ? box.scrollWidth - box.clientWidth : 0;
+    box.classList.toggle("scara-more-left", more > 1 && box.scrollLeft > 1);
+    box.classList.toggle("scara-more-right", more > 1 && box.scrollLeft < more - 1);
+  }
+
+  function cues() {
+    document.querySelectorAll(SCROLLERS).forEach((box) => {
+      if (!box.__scaraCue) {
+        box.__scaraCue = true;
+        box.addEventListener("scroll", () => cue(box), { passive: true });
+      }
+      cue(box);
+    });
+  }
+
+  function column() {
+    markNumbers();
+    keepNumbers(document.querySelector("article") || document.body);
+    fitTables();
+    fitInlineMath();
+    cues();
+  }
+
+  let pending = false;
+  function columnSoon() {
+    if (pending) return;
+    pending = true;
+    requestAnimationFrame(() => { pending = false; column(); });
+  }
+
+  /** Once MathJax has typeset the page (or at once when it has no math). */
+  function whenMath(then, tries = 300) {
+    const mj = window.MathJax;
+    if (mj && mj.startup && mj.startup.promise) mj.startup.promise.then(then);
+    else if (!document.querySelector(".math") || tries <= 0) then();
+    else setTimeout(() => whenMath(then, tries - 1), 100);
+  }
+
   // ---- search results without raw TeX --------------------------------------------------------------------------
   const SYMBOLS = {
     alpha: "α", beta: "β", gamma: "γ", delta: "δ", epsilon: "ε", varepsilon: "ε", zeta: "ζ", eta: "η",
@@ -235,12 +373,18 @@
     Search.htmlToText.__readable = true;
   }
 
-  window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance, put };
+  window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance, put, column };
 
   readableSearch();
   document.addEventListener("DOMContentLoaded", readableSearch);
   window.addEventListener("load", () => {
     figures();
     new MutationObserver(themeAll).observe(document.documentElement, { attributes: true, attributeFilter: ["data-theme"] });
+    whenMath(column);
+    watchPanels();
+    window.addEventListener("resize", columnSoon);
+    // the column changes height when a folded solution or cell opens, or late content arrives: measure again
+    const article = document.querySelector("article");
+    if (article && window.ResizeObserver) new ResizeObserver(columnSoon).observe(article);
   });
 })();

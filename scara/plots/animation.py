@@ -40,6 +40,9 @@ MAX_FRAMES = 1000
 #: playback time of one frame (ms): a 0.1 s frame plays at about 1.7 times real time, a 1 s rest frame at 17
 FRAME_MS = 60
 _BOTTOM = 165  # px under the plot for the buttons and, under them, the slider
+#: colour of the slider's readout (the time): the template's text colour, written out because the slider's own
+#: font, which the readout would inherit, is transparent (it hides the step labels, one per frame)
+READOUT_COLOUR = "#2a3f5f"
 
 
 def _positive(value, name: str, upper: float = 10.0) -> float:
@@ -122,7 +125,8 @@ def play_controls(times, redraw: bool = False, duration: int = FRAME_MS, prefix:
         updatemenus=[dict(type="buttons", direction="left", showactive=False, x=0.0, xanchor="left", y=0.0,
                           yanchor="top", pad=dict(t=56, r=8), buttons=buttons, font=dict(size=12))],
         sliders=[dict(active=0, steps=steps, x=0.0, len=1.0, xanchor="left", y=0.0, yanchor="top",
-                      pad=dict(t=96, b=0), currentvalue=dict(prefix=prefix, font=dict(size=13)),
+                      pad=dict(t=96, b=0),
+                      currentvalue=dict(prefix=prefix, font=dict(size=13, color=READOUT_COLOUR)),
                       ticklen=0, minorticklen=0, tickwidth=0, font=dict(size=1, color="rgba(0,0,0,0)"))],
     )
 

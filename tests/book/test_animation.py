@@ -54,6 +54,15 @@ def test_frames_buttons_slider(animations, name):
     assert len(fig.to_json()) < MAX_JSON
 
 
+def test_play_controls_readout_is_painted():
+    """The slider's readout (the time) is written in an opaque colour: the slider's own font, which it would
+    inherit, is transparent so that the step labels (one per frame) are not drawn."""
+    slider = plots.animation.play_controls([0.0, 0.1, 0.2])["sliders"][0]
+    assert slider["font"]["color"] == "rgba(0,0,0,0)"
+    colour = slider["currentvalue"]["font"]["color"]
+    assert colour.startswith("#") and len(colour) == 7
+
+
 #: the buttons and the slider take 165 px under the plot: a single plot gets 80 px more than the default 560
 @pytest.mark.parametrize("name, max_height", [("trajectory", 640), ("course", 640), ("clik", 780),
                                               ("control", 780)])
