@@ -25,6 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "_ext"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from figure_checks import figure_problems  # noqa: E402
 from print_edition import FIGURES_READY, serve, settle  # noqa: E402, F401 - one page server, one wait for a drawn page
+from style_checks import style_problems  # noqa: E402
 from text_checks import text_problems  # noqa: E402
 
 # the width of a phone and of a laptop, in CSS pixels
@@ -116,10 +117,11 @@ LABEL_OVERLAPS = """() => {
   return out;
 }"""
 
-def layout_problems(pg, width: int) -> list[str]:
-    """Every problem of the page at this viewport width (the page is loaded and settled): the overlaps above,
-    the figures' own checks (``figure_checks.py``) and, at a laptop's width, the text's (``text_checks.py``)."""
-    problems = list(pg.evaluate(LABEL_OVERLAPS)) + figure_problems(pg, width)
+def layout_problems(pg, width: int, dark: bool = False) -> list[str]:
+    """Every problem of the page at this viewport width (the page is loaded and settled, in the dark theme when
+    ``dark``): the overlaps above, the figures' own checks (``figure_checks.py``), the style's (readouts, tables,
+    equations and dropdowns: ``style_checks.py``) and, at a laptop's width, the text's (``text_checks.py``)."""
+    problems = list(pg.evaluate(LABEL_OVERLAPS)) + figure_problems(pg, width) + style_problems(pg, width, dark)
     if width >= LAPTOP:
         problems += text_problems(pg)
     if width <= PHONE:

@@ -236,6 +236,19 @@ def test_page_fits_a_phone(page, server, browser):
     assert not problems, f"{page} at {PHONE} px:\n  " + "\n  ".join(problems)
 
 
+@pytest.mark.parametrize("width", [PHONE, LAPTOP])
+@pytest.mark.parametrize("page", _book_pages())
+def test_page_in_dark_mode(page, width, server, browser):
+    """In the dark theme, at both widths, every page passes the same checks as in light: among them animations
+    whose time readout reads in the dark, dark tables and dropdown arrows that can be seen (``style_checks``)."""
+    context, pg = _open(browser, server, page, width, dark=True)
+    assert pg.evaluate("() => document.documentElement.dataset.theme") == "dark"
+    pg.wait_for_timeout(300)
+    problems = layout_problems(pg, width, dark=True)
+    context.close()
+    assert not problems, f"{page} at {width} px, dark:\n  " + "\n  ".join(problems)
+
+
 FIGURE_COLOURS = """() => Array.from(document.querySelectorAll('.js-plotly-plot')).map(gd => {
   const lum = (c) => { const x = scaraReader.luminance(c); return x === null ? null : Math.round(x * 1000) / 1000; };
   const full = gd._fullLayout;
