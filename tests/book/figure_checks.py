@@ -19,14 +19,10 @@ redraw a 3-D scene and put it back as it was):
   edge of the scene (its WebGL canvas is redrawn with one text recoloured at a time and compared with the
   scene as it was, so that each text's pixels are found exactly).
 
-Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 390 and 1280 px)::
-
-    python tests/book/figure_checks.py _build/html book/03_trajectory.html [more pages]
+``page_checks.py`` runs them with the other checks, in the browser test or alone on a build.
 """
 from __future__ import annotations
 
-import sys
-from pathlib import Path
 
 # helpers shared by the checks: a figure's name, a label's visible box, distances between boxes and points
 _COMMON = r"""
@@ -47,6 +43,14 @@ _COMMON = r"""
   const boxDist = (b, p) => Math.hypot(Math.max(b.left - p[0], 0, p[0] - b.right),
                                        Math.max(b.top - p[1], 0, p[1] - b.bottom));
   const short = (s) => s.replace(/\s+/g, ' ').trim().slice(0, 40);
+  // a 3-D scene redrawn, and its pixels read back
+  const pixels = (sc) => {
+    sc.glplot.redraw();
+    const gl = sc.glplot.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    const px = new Uint8Array(w * h * 4); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    return {px, w, h};
+  };
   const axisOf = (gd, id) => gd._fullLayout[id.replace(/^([xy])/, '$1axis')];
 """
 
@@ -83,13 +87,6 @@ LABELS_AT_MARKERS = "async () => {" + _COMMON + r"""
       return [svg.left + size.l + dom.x[0] * size.w + 0.5 * (1 + p[0] / p[3]) * size.w * (dom.x[1] - dom.x[0]),
               svg.top + size.t + (1 - dom.y[1]) * size.h + 0.5 * (1 - p[1] / p[3]) * size.h * (dom.y[1] - dom.y[0])];
     };
-  };
-  const pixels = (sc) => {
-    sc.glplot.redraw();
-    const gl = sc.glplot.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    const px = new Uint8Array(w * h * 4); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    return {px, w, h};
   };
   const changed = (sc, a, b) => {          // the client box of the pixels that differ between a and b
     const r = sc.glplot.canvas.getBoundingClientRect();
@@ -331,13 +328,6 @@ DROPDOWN_TITLES = "async () => {" + _COMMON + r"""
 # is not drawn (outside the scene); a text whose pixels reach the canvas's edge is cut.
 SCENE_TEXT = "async () => {" + _COMMON + r"""
   const out = [];
-  const pixels = (sc) => {
-    sc.glplot.redraw();
-    const gl = sc.glplot.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    const px = new Uint8Array(w * h * 4); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    return {px, w, h};
-  };
   const diff = (a, b) => {
     let n = 0, edge = 0;
     for (let y = 0; y < a.h; y++) for (let x = 0; x < a.w; x++) {
@@ -389,38 +379,3 @@ def figure_problems(pg, width: int) -> list[str]:
     for _, check in CHECKS:
         problems += pg.evaluate(check)
     return problems
-
-
-def main(argv: list[str]) -> int:
-    from playwright.sync_api import sync_playwright
-
-    from jupyterlab_driver import ARGS, CHROMIUM
-    from page_checks import LAPTOP, PHONE, serve, settle
-
-    folder, pages = Path(argv[0]), argv[1:]
-    httpd, url = serve(folder)
-    found = 0
-    with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
-        for page in pages:
-            page = page if "/" in page else "book/" + page
-            for width in (PHONE, LAPTOP):
-                ctx = browser.new_context(viewport={"width": width, "height": 900})
-                ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
-                pg = ctx.new_page()
-                pg.goto(url + page, wait_until="load")
-                settle(pg)
-                problems = figure_problems(pg, width)
-                found += len(problems)
-                print(f"{page} at {width} px: {len(problems)} problem(s)")
-                for p in problems:
-                    print("   ", p)
-                ctx.close()
-        browser.close()
-    httpd.shutdown()
-    return 1 if found else 0
-
-
-if __name__ == "__main__":
-    sys.path.insert(0, str(Path(__file__).parent))
-    sys.exit(main(sys.argv[1:]))

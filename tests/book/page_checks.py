@@ -9,7 +9,10 @@ its figures; each returns a list of human-readable problems (empty when the page
 - ``LABEL_OVERLAPS``: two text labels of one figure whose bounding boxes overlap (annotations, text drawn on
   traces, the title, axis titles), a figure title that overlaps its legend, an axis title outside its figure.
 
-Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 390 and 1280 px)::
+:func:`layout_problems` adds the checks of ``figure_checks.py``, ``style_checks.py`` and ``text_checks.py``.
+
+Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 390 and 1280 px, in the light
+and the dark theme; every page of the book when none is named)::
 
     python tests/book/page_checks.py _build/html book/03_trajectory.html [more pages]
 """
@@ -23,8 +26,8 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "_ext"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from figure_checks import figure_problems  # noqa: E402
-from print_edition import FIGURES_READY, serve, settle  # noqa: E402, F401 - one page server, one wait for a drawn page
+from figure_checks import _COMMON, figure_problems  # noqa: E402
+from print_edition import FIGURES_READY, book_pages, serve, settle  # noqa: E402, F401 - one page server, one wait for a drawn page
 from style_checks import style_problems  # noqa: E402
 from text_checks import text_problems  # noqa: E402
 
@@ -71,17 +74,9 @@ WIDE_TABLES = """() => {
 
 # The text of a figure: annotations (subplot titles included), text drawn on traces, the title and the axis
 # titles. Legend entries are checked as one box against the title. Hidden and empty texts are skipped.
-LABEL_OVERLAPS = """() => {
+LABEL_OVERLAPS = "() => {" + _COMMON + """
   const out = [];
-  const visible = (el) => {
-    const r = el.getBoundingClientRect();
-    if (r.width < 1 || r.height < 1 || !el.textContent.trim()) return null;
-    for (let e = el; e && e.nodeType === 1; e = e.parentElement) {
-      const s = getComputedStyle(e);
-      if (s.display === 'none' || s.visibility === 'hidden' || parseFloat(s.opacity) === 0) return null;
-    }
-    return r;
-  };
+  const visible = visibleBox;
   const overlap = (a, b, tol) => Math.min(a.right, b.right) - Math.max(a.left, b.left) > tol
                               && Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top) > tol;
   document.querySelectorAll('.plotly-graph-div').forEach(gd => {
@@ -142,24 +137,31 @@ def main(argv: list[str]) -> int:
     from jupyterlab_driver import ARGS, CHROMIUM
 
     folder, pages = Path(argv[0]), argv[1:]
+    if not pages:  # the pages of the book, in reading order
+        root = Path(__file__).resolve().parents[2]
+        pages = [p + ".html" for p in book_pages(root)]
     httpd, url = serve(folder)
     found = 0
     with sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
         for page in pages:
             page = page if "/" in page else "book/" + page
-            for width in (PHONE, LAPTOP):
-                ctx = browser.new_context(viewport={"width": width, "height": 900})
-                ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
-                pg = ctx.new_page()
-                pg.goto(url + page, wait_until="load")
-                settle(pg)
-                problems = layout_problems(pg, width)
-                found += len(problems)
-                print(f"{page} at {width} px: {len(problems)} problem(s)")
-                for p in problems:
-                    print("   ", p)
-                ctx.close()
+            for dark in (False, True):
+                for width in (PHONE, LAPTOP):
+                    ctx = browser.new_context(viewport={"width": width, "height": 900})
+                    ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
+                    if dark:  # the theme reads the reader's choice before it draws the page
+                        ctx.add_init_script("localStorage.setItem('mode', 'dark'); localStorage.setItem('theme', 'dark');")
+                    pg = ctx.new_page()
+                    pg.goto(url + page, wait_until="load")
+                    settle(pg)
+                    problems = layout_problems(pg, width, dark)
+                    found += len(problems)
+                    print(f"{page} at {width} px, {'dark' if dark else 'light'}: {len(problems)} problem(s)",
+                          flush=True)
+                    for p in problems:
+                        print("   ", p, flush=True)
+                    ctx.close()
         browser.close()
     httpd.shutdown()
     return 1 if found else 0

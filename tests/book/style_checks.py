@@ -15,15 +15,10 @@ the page:
   first (and folded again afterwards), so the formulas inside them count;
 - ``DROPDOWNS``: the arrow of every figure's dropdown reads against its button (contrast at least 3:1).
 
-Run alone on a build (it serves the folder on 127.0.0.1 and opens each page at 390 and 1280 px, light and
-dark)::
-
-    python tests/book/style_checks.py _build/html [book/03_trajectory.html ...]
+``page_checks.py`` runs them with the other checks, in the browser test or alone on a build.
 """
 from __future__ import annotations
 
-import sys
-from pathlib import Path
 
 #: least contrast of text (the slider's readout, table text) and of a dropdown's arrow (a graphic) against
 #: what is behind it: WCAG 2 levels AA for text and for the parts of a control
@@ -362,49 +357,3 @@ def style_problems(pg, width: int, dark: bool) -> list[str]:
     finally:
         pg.evaluate(FOLD_BACK)
     return problems
-
-
-#: every page of the book
-PAGES = ["book/intro.html", "book/01_kinematics.html", "book/02_manipulability.html", "book/03_trajectory.html",
-         "book/04_clik.html", "book/05_dynamics.html", "book/06_control.html", "book/appendix_verification.html",
-         "book/package.html", "book/notation.html", "book/references.html"]
-
-
-def main(argv: list[str]) -> int:
-    from playwright.sync_api import sync_playwright
-
-    from jupyterlab_driver import ARGS, CHROMIUM
-    from page_checks import LAPTOP, PHONE, serve, settle
-
-    folder, pages = Path(argv[0]), argv[1:] or PAGES
-    httpd, url = serve(folder)
-    found = 0
-    with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
-        for page in pages:
-            page = page if "/" in page else "book/" + page
-            for dark in (False, True):
-                for width in (PHONE, LAPTOP):
-                    ctx = browser.new_context(viewport={"width": width, "height": 900})
-                    ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
-                    if dark:
-                        ctx.add_init_script("localStorage.setItem('mode', 'dark'); localStorage.setItem('theme', 'dark');")
-                    pg = ctx.new_page()
-                    pg.goto(url + page, wait_until="load")
-                    settle(pg)
-                    if dark:
-                        pg.wait_for_timeout(500)  # the figures' dark relayout
-                    problems = style_problems(pg, width, dark)
-                    found += len(problems)
-                    print(f"{page} at {width} px, {'dark' if dark else 'light'}: {len(problems)} problem(s)", flush=True)
-                    for p in problems:
-                        print("   ", p, flush=True)
-                    ctx.close()
-        browser.close()
-    httpd.shutdown()
-    return 1 if found else 0
-
-
-if __name__ == "__main__":
-    sys.path.insert(0, str(Path(__file__).parent))
-    sys.exit(main(sys.argv[1:]))

@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from jupyterlab_driver import ARGS, CHROMIUM  # one place for the browser's path and flags
-from page_checks import LAPTOP, PHONE, layout_problems, serve, settle
+from page_checks import LAPTOP, PHONE, book_pages, layout_problems, serve, settle
 from page_checks import unavailable as _unavailable
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -31,9 +31,7 @@ SHOTS = HTML.parent / "screenshots"
 
 def _book_pages() -> list[str]:
     """Every page of the book proper: the files named in _toc.yml, as built HTML paths."""
-    toc = (ROOT / "_toc.yml").read_text()
-    files = re.findall(r"(?:root|file):\s*(\S+)", toc)
-    return [f + ".html" for f in files]
+    return [f + ".html" for f in book_pages(ROOT)]
 
 
 @pytest.fixture(scope="module")

@@ -24,16 +24,13 @@ Two checks run on the sources and on the build without a browser, in ``test_text
 :func:`exercise_output_problems`) and ``test_equal_quantities_print_equal`` (chapter 3's comparison of the three motions prints equal values
 equal: the quill's peak speed of 0.05625 m/s is one number in two motions).
 
-Run alone on a build (it serves the folder on 127.0.0.1 and opens every page of ``book/``)::
-
-    python tests/book/text_checks.py _build/html [page.html ...]
+``page_checks.py`` runs them with the other checks, in the browser test or alone on a build.
 """
 from __future__ import annotations
 
 import json
 import os
 import re
-import sys
 from pathlib import Path
 
 
@@ -330,43 +327,3 @@ def _table_rows(html: str, caption_words: str) -> dict:
 # --------------------------------------------------------------------------------------------------
 # alone, on a build
 # --------------------------------------------------------------------------------------------------
-def main(argv: list[str]) -> int:
-    from playwright.sync_api import sync_playwright  # noqa: PLC0415
-
-    from jupyterlab_driver import ARGS, CHROMIUM  # noqa: PLC0415
-    from page_checks import FIGURES_READY, LAPTOP, serve  # noqa: PLC0415
-
-    folder = Path(argv[0])
-    pages = argv[1:] or sorted(p.name for p in (folder / "book").glob("*.html"))
-    httpd, url = serve(folder)
-    found = 0
-    with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS, headless=True)
-        ctx = browser.new_context(viewport={"width": LAPTOP, "height": 900})
-        ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
-        for page in pages:
-            page = page if "/" in page else "book/" + page
-            pg = ctx.new_page()
-            pg.goto(url + page, wait_until="load")
-            # MathJax has typeset the page (its promise resolves to nothing: awaited here, not polled for a
-            # true value) and plotly has drawn every figure
-            pg.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise.then(() => true) : true")
-            pg.wait_for_function(FIGURES_READY, timeout=120000)
-            problems = text_problems(pg)
-            found += len(problems)
-            print(f"{page}: {len(problems)} problem(s)")
-            for p in problems:
-                print("   ", p)
-            pg.close()
-        browser.close()
-    httpd.shutdown()
-    for nb in NOTEBOOKS:
-        for p in exercise_output_problems(nb):
-            print("   source:", p)
-            found += 1
-    return 1 if found else 0
-
-
-if __name__ == "__main__":
-    sys.path.insert(0, str(Path(__file__).parent))
-    sys.exit(main(sys.argv[1:]))
