@@ -33,7 +33,7 @@ CHECK_WIDTHS = (390, 520, 700, 900)
 _DEFAULT_Q = (math.radians(40), math.radians(-70), 0.3, math.radians(45))
 _HEIGHT = 560
 _MARGIN = dict(l=50, r=15, b=40)
-_GAP = 0.11  # vertical gap between the panels, fraction of the plot area
+_GAP = 0.14  # vertical gap between the panels, fraction of the plot area
 _SPLIT = 0.5  # share of the plot area (without the gap) given to the top view
 
 
