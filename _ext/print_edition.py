@@ -307,7 +307,8 @@ def _finished(app, exc):
     if stamp.is_file() and stamp.read_text() == digest and (html_dir / OUT_DIR / BOOK_PDF).is_file():
         logging.getLogger(__name__).info("print edition: up to date")
         return
-    manifest = print_book(html_dir, root, app.config.project)
+    title = app.config.html_title or app.config.project  # Jupyter Book gives the title as html_title
+    manifest = print_book(html_dir, root, title)
     stamp.write_text(digest)
     logging.getLogger(__name__).info(f"print edition: {manifest['book_pages']} pages, "
                                      f"{(html_dir / OUT_DIR / BOOK_PDF).stat().st_size / 2**20:.1f} MB")

@@ -191,6 +191,10 @@ def test_links_stay_inside_the_book(manifest, book):
 def test_contents_bibliography_and_outline(manifest, book, page_texts):
     contents = _words(" ".join(page_texts[:manifest["pages"][0]["first_page"] - 1]))
     assert "Contents" in contents
+    title = re.search(r'^title:\s*"?(.*?)"?\s*$', (ROOT / "_config.yml").read_text(), re.M).group(1)
+    assert title in _words(page_texts[0]), f"the title page does not give the book's title {title!r}"
+    headers = {_words(t.strip().splitlines()[0]) for t in page_texts if t.strip()}
+    assert headers == {title}, f"the pages' running heads are {headers}, not the book's title"
     for p in manifest["pages"]:
         title = _words(p["title"])
         assert re.search(re.escape(title) + r" \.* ?" + str(p["first_page"]) + r"\b", contents), \
