@@ -103,22 +103,35 @@ def _read_pages(browser, url: str, pages: list[str]) -> list[dict]:
     """Each page, drawn at print width and turned into print by ``prepare.js``."""
     script = (STATIC / "prepare.js").read_text()
     stems = [_stem(p) for p in pages]
-    out = []
-    for page in pages:
+
+    def read(page: str) -> dict:
         ctx = browser.new_context(viewport={"width": PRINT_WIDTH + 80, "height": 1000})
         ctx.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url) else r.abort())
-        pg = ctx.new_page()
-        errors: list[str] = []
-        pg.on("pageerror", lambda e, errors=errors: errors.append(str(e)))
-        pg.goto(url + page + ".html", wait_until="load")
-        settle(pg)
-        title = pg.evaluate("() => (document.querySelector('article h1') || {}).textContent || document.title")
-        done = pg.evaluate(script, {"stem": _stem(page), "pages": stems, "multiples": MULTIPLES,
-                                    "frames": FRAMES, "width": PRINT_WIDTH})
-        ctx.close()
+        try:
+            pg = ctx.new_page()
+            errors: list[str] = []
+            pg.on("pageerror", lambda e: errors.append(str(e)))
+            pg.goto(url + page + ".html", wait_until="load")
+            pg.wait_for_selector("article.bd-article", state="attached")
+            settle(pg)
+            title = pg.evaluate("() => (document.querySelector('article h1') || {}).textContent || document.title")
+            done = pg.evaluate(script, {"stem": _stem(page), "pages": stems, "multiples": MULTIPLES,
+                                        "frames": FRAMES, "width": PRINT_WIDTH})
+        finally:
+            ctx.close()
         if errors:
             raise RuntimeError(f"printing {page}: the page raised {errors[0]}")
-        out.append({"page": page, "stem": _stem(page), "title": title.replace("#", "").strip(), **done})
+        return {"page": page, "stem": _stem(page), "title": title.replace("#", "").strip(), **done}
+
+    from sphinx.util import logging  # noqa: PLC0415
+
+    out = []
+    for page in pages:
+        try:
+            out.append(read(page))
+        except Exception as exc:  # noqa: BLE001 - a browser's hiccup on a busy machine: once more, then it stands
+            logging.getLogger(__name__).info(f"print edition: reading {page} again after: {exc}")
+            out.append(read(page))
     return out
 
 

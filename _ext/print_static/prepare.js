@@ -6,6 +6,7 @@
 async (args) => {
   const {stem, pages, multiples, frames, width} = args;
   const article = document.querySelector('article.bd-article');
+  if (!article) throw new Error(`no article.bd-article in ${location.href} ("${document.title}")`);
   const figures = [];
   const pick = (n, k, keep) => {            // k evenly spaced indices of n, always the first, last and `keep`
     if (n <= k) return [...Array(n).keys()];
