@@ -1,0 +1,104 @@
+"""The two editions of the book, from one source.
+
+The instructor edition is the book as the repository builds it: every exercise with its worked solution folded
+under it, and at the end of each chapter the answer key (each numeric answer with its unit and tolerance, the
+marking note of each exercise answered by an argument).
+
+The student edition is written from the same sources by :func:`write_student_source` and built like the book:
+
+* every ``{solution}`` block is cut out of the chapters' text (whatever else its cell says stays);
+* every cell tagged ``solution`` is left out: the hidden cells that compute a worked solution's numbers, the
+  answer key and its heading (so the numbers are never computed, let alone stored in an executed notebook);
+* the answers package (:mod:`scara.course.answers`, the key) is left out of the copied package, so the take-home
+  download of the student edition cannot compute it either.
+
+``python -m scara.course edition student`` writes the sources to ``_build/student-source`` and builds them into
+``_build/student/html``.
+"""
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from scara.errors import ScaraError
+
+__all__ = ["SOLUTION_TAG", "SOLUTION_BLOCK", "strip_solutions", "student_notebook", "write_student_source",
+           "build_student", "ROOT"]
+
+#: the tag of a cell that exists only for the solutions (the instructor edition)
+SOLUTION_TAG = "solution"
+#: a fenced ``{solution}`` directive, with its fence (three or more backticks or colons) and body
+SOLUTION_BLOCK = re.compile(r"^(?P<fence>`{3,}|:{3,})\{solution\}[^\n]*\n.*?^(?P=fence)[ \t]*\n?", re.M | re.S)
+#: the repository: the book's sources sit beside the package
+ROOT = Path(__file__).resolve().parents[2]
+#: what the student edition's source holds besides the notebooks (copied as they are)
+COPIED = ("_config.yml", "_toc.yml", "references.bib", "pyproject.toml", "requirements.txt", "take_home",
+          "benchmarks/results.json", "_ext")
+
+
+def strip_solutions(text: str) -> str:
+    """``text`` (a markdown cell) without its ``{solution}`` blocks; an unclosed block raises ``ScaraError``."""
+    out = SOLUTION_BLOCK.sub("", text)
+    if re.search(r"^(`{3,}|:{3,})\{solution\}", out, re.M):
+        raise ScaraError("a {solution} block is not closed by its own fence:\n" + out[:300])
+    return out
+
+
+def student_notebook(nb: dict) -> dict:
+    """The student edition of a chapter's notebook (a dict as ``json`` reads it): no cell tagged
+    :data:`SOLUTION_TAG`, no ``{solution}`` block, no empty cell left where one was."""
+    cells = []
+    for cell in nb["cells"]:
+        if SOLUTION_TAG in cell.get("metadata", {}).get("tags", []):
+            continue
+        if cell["cell_type"] == "markdown":
+            text = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+            stripped = strip_solutions(text)
+            if stripped != text:
+                if not stripped.strip():
+                    continue
+                cell = dict(cell, source=stripped.splitlines(keepends=True))
+        cells.append(cell)
+    return dict(nb, cells=cells)
+
+
+def write_student_source(out: Path, root: Path = ROOT) -> Path:
+    """Write the student edition's sources to ``out`` (emptied first): the book's pages, stripped of their
+    solutions, its configuration and extensions, and the package without its answers. Returns ``out``."""
+    out = Path(out)
+    if out.resolve() == root.resolve() or root.resolve() in out.resolve().parents and out.name in ("book", "scara"):
+        raise ScaraError(f"refusing to write the student edition over the sources: {out}")
+    if out.exists():
+        shutil.rmtree(out)
+    (out / "book").mkdir(parents=True)
+    for page in sorted((root / "book").iterdir()):
+        if page.suffix == ".ipynb":
+            nb = json.loads(page.read_text(encoding="utf-8"))
+            (out / "book" / page.name).write_text(json.dumps(student_notebook(nb), indent=1, ensure_ascii=False) + "\n",
+                                                  encoding="utf-8")
+        elif page.suffix == ".md":
+            (out / "book" / page.name).write_text(strip_solutions(page.read_text(encoding="utf-8")), encoding="utf-8")
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.nbi", "*.nbc", ".ipynb_checkpoints")
+    for name in COPIED:
+        src = root / name
+        if src.is_dir():
+            shutil.copytree(src, out / name, ignore=ignore)
+        elif src.is_file():
+            (out / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, out / name)
+    shutil.copytree(root / "scara", out / "scara", ignore=shutil.ignore_patterns(
+        "__pycache__", "*.pyc", "*.nbi", "*.nbc", "answers"))
+    (out / "EDITION").write_text("student\n", encoding="utf-8")
+    return out
+
+
+def build_student(source: Path, output: Path, extra_args=()) -> int:
+    """Build the student edition's ``source`` with Jupyter Book into ``output`` (its ``html`` folder), warnings
+    as errors; returns the build's exit status."""
+    cmd = [str(Path(sys.executable).with_name("jupyter-book")), "build", str(source), "--path-output", str(output),
+           "-W", "-n", "--keep-going", *extra_args]
+    return subprocess.call(cmd)
