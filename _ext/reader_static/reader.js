@@ -373,6 +373,25 @@
     Search.htmlToText.__readable = true;
   }
 
+  // ---- a folded block opens from anywhere on its title bar ----------------------------------------------------
+  /* sphinx-togglebutton listens on a folded admonition's title bar but only finds its button when the click lands
+   * on the bar itself or the chevron: a click on the title's text or its link (a solution's "Exercise 4.1 (...)")
+   * follows the link back to the exercise and throws. This listener, first in line (capture), turns any click on
+   * the bar into a click on the chevron. */
+  const TOGGLE_TITLE = ".admonition.dropdown > .admonition-title, .admonition.toggle > .admonition-title";
+
+  function openFromTitle(event) {
+    const target = event.target instanceof Element ? event.target : null;
+    const title = target && target.closest(TOGGLE_TITLE);
+    if (!title || target === title || target.closest(".toggle-button")) return;
+    const button = title.querySelector(".toggle-button");
+    if (!button) return;
+    event.preventDefault();
+    event.stopPropagation();
+    button.click();
+  }
+  document.addEventListener("click", openFromTitle, true);
+
   window.scaraReader = { texToText, stripMath, applyTheme, darkened, themeAll, figures, rgba, luminance, put, column };
 
   readableSearch();

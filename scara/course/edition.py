@@ -10,7 +10,8 @@ The student edition is written from the same sources by :func:`write_student_sou
 * every cell tagged ``solution`` is left out: the hidden cells that compute a worked solution's numbers, the
   answer key and its heading (so the numbers are never computed, let alone stored in an executed notebook);
 * the answers package (:mod:`scara.course.answers`, the key) is left out of the copied package, so the take-home
-  download of the student edition cannot compute it either.
+  download of the student edition cannot compute it either;
+* the teacher's page (:data:`INSTRUCTOR_PAGES`) is left out, and out of the table of contents.
 
 ``python -m scara.course edition student`` writes the sources to ``_build/student-source`` and builds them into
 ``_build/student/html``.
@@ -26,9 +27,11 @@ from pathlib import Path
 
 from scara.errors import ScaraError
 
-__all__ = ["SOLUTION_TAG", "SOLUTION_BLOCK", "strip_solutions", "student_notebook", "write_student_source",
+__all__ = ["INSTRUCTOR_PAGES", "SOLUTION_TAG", "SOLUTION_BLOCK", "strip_solutions", "student_notebook", "write_student_source",
            "build_student", "ROOT"]
 
+#: the pages of the instructor edition only
+INSTRUCTOR_PAGES = ("teaching",)
 #: the tag of a cell that exists only for the solutions (the instructor edition)
 SOLUTION_TAG = "solution"
 #: a fenced ``{solution}`` directive, with its fence (three or more backticks or colons) and body
@@ -48,6 +51,18 @@ def strip_solutions(text: str) -> str:
     return out
 
 
+#: what only the solutions' cells use: dropped from the chapters' imports in the student edition
+SOLUTION_NAMES = ("answer_key", "glue_solution")
+IMPORT = re.compile(r"^from scara\.course import (?P<names>[\w, ]+)$", re.M)
+
+
+def _imports(code: str) -> str:
+    def keep(m):
+        names = [n.strip() for n in m.group("names").split(",") if n.strip() not in SOLUTION_NAMES]
+        return f"from scara.course import {', '.join(names)}" if names else ""
+    return IMPORT.sub(keep, code)
+
+
 def student_notebook(nb: dict) -> dict:
     """The student edition of a chapter's notebook (a dict as ``json`` reads it): no cell tagged
     :data:`SOLUTION_TAG`, no ``{solution}`` block, no empty cell left where one was."""
@@ -55,8 +70,10 @@ def student_notebook(nb: dict) -> dict:
     for cell in nb["cells"]:
         if SOLUTION_TAG in cell.get("metadata", {}).get("tags", []):
             continue
+        text = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+        if cell["cell_type"] == "code" and IMPORT.search(text):
+            cell = dict(cell, source=_imports(text).splitlines(keepends=True))
         if cell["cell_type"] == "markdown":
-            text = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
             stripped = strip_solutions(text)
             if stripped != text:
                 if not stripped.strip():
@@ -76,6 +93,8 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
         shutil.rmtree(out)
     (out / "book").mkdir(parents=True)
     for page in sorted((root / "book").iterdir()):
+        if page.stem in INSTRUCTOR_PAGES:
+            continue
         if page.suffix == ".ipynb":
             nb = json.loads(page.read_text(encoding="utf-8"))
             (out / "book" / page.name).write_text(json.dumps(student_notebook(nb), indent=1, ensure_ascii=False) + "\n",
@@ -92,6 +111,10 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
             shutil.copy2(src, out / name)
     shutil.copytree(root / "scara", out / "scara", ignore=shutil.ignore_patterns(
         "__pycache__", "*.pyc", "*.nbi", "*.nbc", "answers"))
+    toc = (out / "_toc.yml").read_text(encoding="utf-8")
+    for page in INSTRUCTOR_PAGES:
+        toc = re.sub(rf"^[ \t]*- file: book/{page}[ \t]*\n", "", toc, flags=re.M)
+    (out / "_toc.yml").write_text(toc, encoding="utf-8")
     (out / "EDITION").write_text("student\n", encoding="utf-8")
     return out
 

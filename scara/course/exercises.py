@@ -135,7 +135,12 @@ class Answer:
         return self.tolerance if self.absolute else self.tolerance * abs(expected)
 
     def matches(self, expected: float, given) -> bool:
-        """Whether ``given`` is within the tolerance of ``expected`` (False for anything not a finite number)."""
+        """Whether ``given`` is within the tolerance of ``expected`` (False for anything not a finite real number:
+        text, a bool, an array)."""
+        import numbers  # noqa: PLC0415
+
+        if isinstance(given, bool) or not isinstance(given, numbers.Real):
+            return False
         try:
             value = float(given)
         except (TypeError, ValueError, OverflowError):
@@ -231,6 +236,8 @@ def _solver(label: str):
         answers = importlib.import_module("scara.course.answers")
     except ModuleNotFoundError as exc:
         raise AnswersMissing("the answers are not part of this copy of the course (the student edition)") from exc
+    if not hasattr(answers, "load"):  # an empty folder where the answers were (the grading sandbox)
+        raise AnswersMissing("the answers are not part of this copy of the course")
     answers.load()
     if label not in answers.SOLVERS:
         raise KeyError(f"no computation answers exercise {label!r}")

@@ -1,0 +1,112 @@
+"""Run one submitted notebook and write what it answered: the part of the grading that runs inside the sandbox.
+
+``python -m scara.course._runner NOTEBOOK RESULT TIMEOUT NAMES`` executes ``NOTEBOOK`` with nbclient in a fresh
+kernel (every cell, errors allowed, ``TIMEOUT`` seconds per cell), then one more cell of its own that prints the
+values of the answer variables ``NAMES`` (comma-separated), and writes ``RESULT`` (JSON): the status (``ok``,
+``timeout``, ``dead``, ``memory``, ``unreadable``), the answers read, and the first error a cell of the student's
+raised. This process sees only the submission's copy: it never holds the key.
+"""
+from __future__ import annotations
+
+import json
+import sys
+
+#: the line the collecting cell prints, before the answers as JSON
+MARKER = "SCARA-ANSWERS "
+#: the most characters of a student's error message kept for the feedback
+ERROR_CHARS = 300
+
+COLLECT = '''\
+def __scara_collect(names):
+    import json, math, numbers
+    out = {}
+    for name in names:
+        value = globals().get(name, None)
+        if isinstance(value, numbers.Real) and not isinstance(value, bool):
+            number = float(value)
+            out[name] = number if math.isfinite(number) else repr(number)
+        else:
+            out[name] = None if value is None else repr(value)[:80]
+    print("%s" + json.dumps(out))
+__scara_collect(%r)
+'''
+
+
+def _first_error(nb) -> str | None:
+    for k, cell in enumerate(nb.cells, 1):
+        for output in cell.get("outputs", []):
+            if output.get("output_type") == "error":
+                text = f"cell {k}: {output.get('ename', 'Error')}: {output.get('evalue', '')}"
+                return text[:ERROR_CHARS]
+    return None
+
+
+def _collected(cell) -> dict | None:
+    """The answers the collecting cell printed (its last marker line), or None."""
+    found = None
+    for output in cell.get("outputs", []):
+        if output.get("output_type") == "stream":
+            for line in str(output.get("text", "")).splitlines():
+                if line.startswith(MARKER):
+                    found = line[len(MARKER):]
+    if found is None:
+        return None
+    try:
+        data = json.loads(found)
+    except ValueError:
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def run(path: str, result: str, timeout: float, names: list[str]) -> dict:
+    import nbformat  # noqa: PLC0415
+    from nbclient import NotebookClient  # noqa: PLC0415
+    from nbclient.exceptions import CellTimeoutError, DeadKernelError  # noqa: PLC0415
+
+    out = {"status": "ok", "answers": {}, "error": None}
+    try:
+        nb = nbformat.read(path, as_version=4)
+        nb.cells = [c for c in nb.cells if c.cell_type in ("code", "markdown", "raw")]
+        for c in nb.cells:
+            if c.cell_type == "code":
+                c.outputs = []
+    except Exception as exc:  # noqa: BLE001 - any unreadable file is the submission's fault, reported
+        out.update(status="unreadable", error=f"{type(exc).__name__}: {str(exc)[:ERROR_CHARS]}")
+        return out
+    nb.cells.append(nbformat.v4.new_code_cell(COLLECT % (MARKER, names)))
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    client = NotebookClient(nb, timeout=timeout, kernel_name="python3", allow_errors=True, startup_timeout=120,
+                            record_timing=False, store_widget_state=False)
+    try:
+        client.execute()
+    except CellTimeoutError:
+        out["status"] = "timeout"
+    except DeadKernelError:
+        out["status"] = "dead"
+    except Exception as exc:  # noqa: BLE001 - e.g. the kernel could not start: reported, not raised
+        out.update(status="dead", error=f"{type(exc).__name__}: {str(exc)[:ERROR_CHARS]}")
+    if out["status"] == "ok":
+        answers = _collected(nb.cells[-1])
+        if answers is None:
+            out["status"] = "no-answers"
+        else:
+            out["answers"] = {n: answers.get(n) for n in names}
+    out["error"] = out["error"] or _first_error(nb)
+    out["memory_error"] = any(o.get("output_type") == "error" and o.get("ename") == "MemoryError"
+                              for c in nb.cells for o in c.get("outputs", []))
+    return out
+
+
+def main(argv: list[str]) -> int:
+    path, result, timeout, names = argv[1], argv[2], float(argv[3]), [n for n in argv[4].split(",") if n]
+    try:
+        out = run(path, result, timeout, names)
+    except MemoryError:
+        out = {"status": "memory", "answers": {}, "error": "MemoryError"}
+    with open(result, "w", encoding="utf-8") as fh:
+        json.dump(out, fh)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
