@@ -324,8 +324,8 @@ def graded(tmp_path_factory):
             code = WRITE.format(paths=[str(tmp / "escaped"), str(key_path), str(subs / "right-x7q.ipynb"),
                                        "/tmp/scara-escaped"], var=var)
         elif kind == "steal":
-            code = HOSTILE["steal"].format(var=var, params=p) + f"\n{var} = -1.0"
-            code = f"try:\n    {HOSTILE['steal'].format(var=var, params=p)}\nexcept Exception:\n    {var} = -1.0"
+            steal = HOSTILE["steal"].format(var=var, params=p).replace("\n", "\n    ")
+            code = f"try:\n    {steal}\nexcept Exception:\n    {var} = -1.0"
         else:
             code = HOSTILE[kind]
         nb.cells.append(nbformat.v4.new_code_cell(code))
