@@ -10,9 +10,15 @@ from scara.errors import ScaraError
 ARM = ScaraParams()
 
 
+def _clean(x: float) -> float:
+    """``x`` as a float, with rounding noise below 1e-12 (and -0.0) shown as 0.0 in the worked solutions."""
+    x = float(x)
+    return 0.0 if abs(x) < 1e-12 else x
+
+
 def _deg(x: float) -> float:
-    """Radians to degrees, with -0.0 turned into 0.0."""
-    return math.degrees(x) + 0.0
+    """Radians to degrees, rounding noise cleaned."""
+    return _clean(math.degrees(x))
 
 
 @solves("ex-kin-direct")
@@ -22,7 +28,7 @@ def kin_direct(t1: float, t2: float, d3: float, t4: float) -> dict:
     if not ARM.d3_min <= d3 <= ARM.d3_max:
         raise ScaraError(f"exercise ex-kin-direct: d3 = {d3} m is outside the quill's stroke")
     x = pose(q, ARM)
-    return {"px": float(x[0]) + 0.0, "py": float(x[1]) + 0.0, "pz": float(x[2]), "phi": _deg(x[3]),
+    return {"px": _clean(x[0]), "py": _clean(x[1]), "pz": float(x[2]), "phi": _deg(x[3]),
             "t12": t1 + t2}
 
 
@@ -41,7 +47,7 @@ def kin_elbows(px: float, py: float, pz: float, phi: float) -> dict:
     beta = math.atan2(ARM.a2 * math.sin(up[1]), ARM.a1 + ARM.a2 * math.cos(up[1]))
     return {"d3": float(up[2]), "t2_up": _deg(up[1]), "t1_up": _deg(up[0]), "t1_down": _deg(down[0]),
             "t2_down": _deg(down[1]), "t4_up": _deg(up[3]), "t4_down": _deg(down[3]),
-            "r2": r**2, "c2": c2 + 0.0, "gamma": _deg(gamma), "beta": _deg(beta)}
+            "r2": r**2, "c2": _clean(c2), "gamma": _deg(gamma), "beta": _deg(beta)}
 
 
 @solves("ex-kin-straight")
@@ -52,9 +58,8 @@ def kin_straight(t2: float, v: float) -> dict:
     if abs(np.linalg.det(J)) < 0.05 * ARM.a1 * ARM.a2:
         raise ScaraError(f"exercise ex-kin-straight: θ2 = {t2}° is too close to a singularity")
     qd = np.linalg.solve(J, [v, 0.0, 0.0, 0.0])
-    return {"w1": float(qd[0]) + 0.0, "w2": float(qd[1]) + 0.0, "v3": float(qd[2]) + 0.0, "w4": float(qd[3]) + 0.0,
-            "h11": float(J[0, 0]) + 0.0, "h12": float(J[0, 1]) + 0.0, "h21": float(J[1, 0]) + 0.0,
-            "h22": float(J[1, 1]) + 0.0}
+    return {"w1": _clean(qd[0]), "w2": _clean(qd[1]), "v3": _clean(qd[2]), "w4": _clean(qd[3]),
+            "h11": _clean(J[0, 0]), "h12": _clean(J[0, 1]), "h21": _clean(J[1, 0]), "h22": _clean(J[1, 1])}
 
 
 @solves("ex-kin-singular")
@@ -67,7 +72,7 @@ def kin_singular(a1: float, a2: float) -> dict:
     null = Vt[-1] / Vt[-1][0]
     tip = pose(q, arm)[:2]
     radial = tip / np.linalg.norm(tip)
-    return {"null2": float(null[1]), "sigma_min": float(sv[-1]) + 0.0,
+    return {"null2": float(null[1]), "sigma_min": float(sv[-1]),
             "lost_radial": float(abs(U[:, -1] @ radial))}
 
 
