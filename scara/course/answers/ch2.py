@@ -73,7 +73,7 @@ def manip_turn(t2: float, t1: float) -> dict:
     e_a, e_b = velocity_ellipsoid(q_a, ARM, rows=(0, 1)), velocity_ellipsoid(q_b, ARM, rows=(0, 1))
     axis_a, axis_b = _axis_deg(e_a), _axis_deg(e_b)
     if abs(abs(axis_b) - 90.0) < 1.0:
-        raise ScaraError(f"exercise ex-manip-turn: after the turn the major axis is too close to ±90° to mark")
+        raise ScaraError(f"exercise ex-manip-turn: after a turn of {t1}° the major axis is too close to ±90° to mark")
     return {"w": float(manipulability(q_b, ARM)), "s1": float(e_b.lengths[0]), "s2": float(e_b.lengths[1]),
             "axis_b": axis_b, "axis_a": axis_a, "w_a": float(manipulability(q_a, ARM)),
             "turn": (axis_b - axis_a + 90) % 180 - 90}
