@@ -64,8 +64,8 @@ EXERCISES = (
                   "coupling; the gain must grow with the payload, making the loop more sensitive to noise and "
                   "delay, while the integral removes the error for any constant load."),
     Exercise("ex-ctl-sampling-limit", DOC,
-             params=(Param("rho", 40.0, "m/s²", ".0f", "the robust term's magnitude", low=30.0, high=70.0,
-                           step=5.0),),
+             params=(Param("rho", 40.0, "m/s²", ".0f", "the robust term's magnitude", low=40.0, high=60.0,
+                           step=2.0),),
              answers=(Answer("eps_min", "(a) the thinnest boundary layer the sampling allows", "", 0.01),),
              note="(a) epsilon_min = mu_max rho T / (2 - mu_max K_D T), about proportional to rho, still below 0.05: "
                   "the book's layer works. (b) Below epsilon_min the torque switches at every sample with amplitude "
