@@ -302,3 +302,34 @@ def test_search_reads_as_text(query, server, browser):
     assert len(summaries) >= 2, f"search for {query!r}: {len(summaries)} results with a summary"
     tex = [s for s in summaries if re.search(r"\\[()\[\]]|\\[A-Za-z]{2,}|[_^]\{", s)]
     assert not tex, f"search for {query!r}: summaries with raw TeX: {[t[:120] for t in tex[:3]]}"
+
+
+SOLUTION_TITLES = """() => Array.from(document.querySelectorAll('.solution.dropdown')).map(s => s.id)"""
+
+
+@pytest.mark.parametrize("page", ["book/01_kinematics.html", "book/04_clik.html", "book/appendix_verification.html"])
+def test_a_click_anywhere_on_a_solutions_title_opens_it(page, server, browser):
+    """Each folded solution opens from a click on the link in its title ("Exercise 4.1 (...)"), on its title's
+    text and on its chevron, without leaving the solution for its exercise and without an error in the page;
+    a second click folds it again."""
+    context, pg = _open(browser, server, page, LAPTOP)
+    errors = []
+    pg.on("pageerror", lambda exc: errors.append(str(exc)))
+    ids = pg.evaluate(SOLUTION_TITLES)
+    assert ids, f"{page} has no folded solution"
+    url = pg.url
+    hidden = "(id) => document.getElementById(id).classList.contains('toggle-hidden')"
+    for k, sid in enumerate(ids):
+        box = pg.locator(f"[id='{sid}']")
+        title = box.locator(":scope > .admonition-title")
+        target = [title.locator("a").first, title, title.locator(".toggle-button")][k % 3]
+        assert pg.evaluate(hidden, sid), f"{page}: {sid} is open before any click"
+        target.click()
+        pg.wait_for_timeout(150)
+        assert not pg.evaluate(hidden, sid), f"{page}: a click on the title of {sid} left it folded"
+        assert pg.url == url, f"{page}: a click on the title of {sid} went to {pg.url}"
+        title.click(position={"x": 5, "y": 5})
+        pg.wait_for_timeout(150)
+        assert pg.evaluate(hidden, sid), f"{page}: a second click on the title of {sid} did not fold it"
+    context.close()
+    assert not errors, f"{page}: errors in the page: {errors}"
