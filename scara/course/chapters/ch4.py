@@ -25,6 +25,15 @@ EXERCISES = (
              note="Relaxing y raises w as relaxing x does (y drifts); relaxing z frees only d_3, along which "
                   "∇w has no component, so w stays the inverse's and the quill never moves: z drifts by the "
                   "full height range of the path."),
+    Exercise("ex-clik-lag", DOC,
+             params=(Param("A", 1.0, "m/s²", ".1f", "constant acceleration of the reference along z",
+                           low=0.5, high=3.0, step=0.1),
+                     Param("K", 400.0, "s⁻¹", ".0f", "second-order CLIK gain K (K_P = K², K_D = 2K)",
+                           low=200.0, high=900.0, step=50.0),
+                     Param("duration", 0.3, "s", ".1f", "length of the run")),
+             answers=(Answer("lag_um", "steady error along z at the end of the run", "µm", 0.02),),
+             note="The steady lag of the second-order CLIK is e = T A K_D / (2 K_P) = T A / K with the default "
+                  "gains; along z the kinematics are linear, so a run agrees to all digits."),
     Exercise("ex-clik-damping", DOC,
              params=(Param("offset_mm", 2.0, "mm", ".1f", "distance of the straight line from the joint-1 axis",
                            low=1.0, high=5.0, step=0.5),),
@@ -36,15 +45,6 @@ EXERCISES = (
              note="The peak rate falls fast with λ while the largest error (near the axis) hardly changes; away "
                   "from the axis the error grows with λ. Choose the smallest λ whose peak rate the motors can "
                   "deliver (or damp only near the axis)."),
-    Exercise("ex-clik-lag", DOC,
-             params=(Param("A", 1.0, "m/s²", ".1f", "constant acceleration of the reference along z",
-                           low=0.5, high=3.0, step=0.1),
-                     Param("K", 400.0, "s⁻¹", ".0f", "second-order CLIK gain K (K_P = K², K_D = 2K)",
-                           low=200.0, high=900.0, step=50.0),
-                     Param("duration", 0.3, "s", ".1f", "length of the run")),
-             answers=(Answer("lag_um", "steady error along z at the end of the run", "µm", 0.02),),
-             note="The steady lag of the second-order CLIK is e = T A K_D / (2 K_P) = T A / K with the default "
-                  "gains; along z the kinematics are linear, so a run agrees to all digits."),
     Exercise("ex-clik-second-limit", DOC,
              answers=(Answer("k_limit", "largest stable gain K of the second-order CLIK (2/T)", "s⁻¹", 0.01),
                       Answer("ep_1000_nm", "largest position error with K_z = 1000 s⁻¹", "nm", 0.02),
