@@ -75,8 +75,9 @@ def run(path: str, result: str, timeout: float, names: list[str]) -> dict:
         return out
     nb.cells.append(nbformat.v4.new_code_cell(COLLECT % (MARKER, names)))
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    # a cell past its time is interrupted and the notebook goes on, so that the answers set before it count
     client = NotebookClient(nb, timeout=timeout, kernel_name="python3", allow_errors=True, startup_timeout=120,
-                            record_timing=False, store_widget_state=False)
+                            record_timing=False, store_widget_state=False, interrupt_on_timeout=True)
     try:
         client.execute()
     except CellTimeoutError:
@@ -85,12 +86,16 @@ def run(path: str, result: str, timeout: float, names: list[str]) -> dict:
         out["status"] = "dead"
     except Exception as exc:  # noqa: BLE001 - e.g. the kernel could not start: reported, not raised
         out.update(status="dead", error=f"{type(exc).__name__}: {str(exc)[:ERROR_CHARS]}")
-    if out["status"] == "ok":
+    interrupted = any(o.get("output_type") == "error" and o.get("ename") == "KeyboardInterrupt"
+                      for c in nb.cells[:-1] for o in c.get("outputs", []))
+    if out["status"] in ("ok", "timeout"):
         answers = _collected(nb.cells[-1])
-        if answers is None:
-            out["status"] = "no-answers"
-        else:
+        if answers is not None:
             out["answers"] = {n: answers.get(n) for n in names}
+        if interrupted:
+            out["status"] = "timeout"
+        elif answers is None and out["status"] == "ok":
+            out["status"] = "no-answers"
     out["error"] = out["error"] or _first_error(nb)
     out["memory_error"] = any(o.get("output_type") == "error" and o.get("ename") == "MemoryError"
                               for c in nb.cells for o in c.get("outputs", []))

@@ -56,6 +56,7 @@ STARTUP = 45.0
 STATUS_TEXT = {
     "ok": "ran to the end",
     "timeout": "timed out after {timeout:g} s",
+    "timeout-marked": "a cell timed out after {timeout:g} s (interrupted; the answers set by then are marked)",
     "dead": "kernel died",
     "memory": "ran out of memory (limit {memory} MB)",
     "unreadable": "not a readable notebook",
@@ -204,6 +205,8 @@ def _run_one(sub: Submission, names: list[str], base: Path, timeout: float, memo
             return sub
         sub.status = status if status in STATUS_TEXT else "no-answers"
         sub.answers = answers if isinstance(answers, dict) else {}
+        if sub.status == "timeout" and any(v is not None for v in sub.answers.values()):
+            sub.status = "timeout-marked"
         sub.error = str(error)[:300] if error else None
         if data.get("memory_error") and sub.status in ("ok", "dead", "no-answers"):
             sub.status = "memory"  # a cell ran out of memory: said so, whatever it answered
