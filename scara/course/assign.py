@@ -28,7 +28,7 @@ from scara.course.exercises import Exercise, catalog, draw, exercise
 from scara.course.statement import statement
 from scara.errors import ScaraError
 
-__all__ = ["assign", "read_roster", "read_secret", "assignable", "answer_variable", "MIN_SECRET"]
+__all__ = ["exercise_table", "assign", "read_roster", "read_secret", "assignable", "answer_variable", "MIN_SECRET"]
 
 #: the shortest course secret accepted (bytes)
 MIN_SECRET = 16
@@ -81,6 +81,22 @@ def assignable(ex: Exercise) -> bool:
     except ScaraError:
         return False
     return True
+
+
+def exercise_table():
+    """The book's exercises as a teacher chooses among them (a DataFrame): number, label, what is asked (the
+    answers with their units, or "argument"), the parameters an assignment draws, and whether it can be set."""
+    import pandas as pd  # noqa: PLC0415
+
+    rows = []
+    for ex in catalog().values():
+        drawn = ", ".join(f"{p.text} ({p.show(p.values()[0])} to {p.show(p.values()[-1])} {p.unit})".replace(" )", ")")
+                          for p in ex.params if p.varies)
+        asked = "; ".join(f"{a.text} ({a.unit}, {a.tolerance_text()})" if a.unit else f"{a.text} ({a.tolerance_text()})"
+                          for a in ex.answers) or "an argument (marking note)"
+        rows.append({"Exercise": ex.number, "Label": ex.label, "Answers": asked, "Drawn for each student": drawn or "-",
+                     "Can be set": "yes" if assignable(ex) else "no"})
+    return pd.DataFrame(rows).set_index("Exercise")
 
 
 def answer_variable(ex: Exercise, name: str) -> str:

@@ -10,7 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["command", "example_submissions", "ROSTER", "EXERCISES"]
+__all__ = ["command", "example_submissions", "parameters_table", "ROSTER", "EXERCISES"]
 
 #: the worked example's class
 ROSTER = "id,name\nada,Ada Lovelace\nalan,Alan Turing\ngrace,Grace Hopper\n"
@@ -37,10 +37,31 @@ run = scara.clik2(ramp, *scara.second_order_gains(np.array([400.0, 400.0, K, 100
 }
 
 
-def command(*args: str) -> str:
-    """Run ``python -m scara.course ARGS`` and return what it printed (its error line, if it failed)."""
-    run = subprocess.run([sys.executable, "-m", "scara.course", *args], capture_output=True, text=True)
+def command(*args: str, cwd=None) -> str:
+    """Run ``python -m scara.course ARGS`` (in folder ``cwd``) and return what it printed (its error line, if
+    it failed)."""
+    run = subprocess.run([sys.executable, "-m", "scara.course", *args], capture_output=True, text=True, cwd=cwd)
     return (run.stdout + run.stderr).strip()
+
+
+def parameters_table(key: dict):
+    """Each student's numbers, one row per parameter that varies, one column per student (a DataFrame)."""
+    import pandas as pd  # noqa: PLC0415
+
+    from scara.course.exercises import exercise  # noqa: PLC0415
+
+    rows = {}
+    for sid, student in key["students"].items():
+        for label, params in student["params"].items():
+            ex = exercise(label)
+            for name, value in params.items():
+                p = ex.param(name)
+                if p.varies:
+                    rows.setdefault((f"{ex.number}", f"{p.text} ({p.unit})" if p.unit else p.text), {})[
+                        student["name"]] = p.show(value)
+    table = pd.DataFrame.from_dict(rows, orient="index")
+    table.index.names = ["Exercise", "Parameter"]
+    return table
 
 
 def example_submissions(assignments: Path, out: Path, key: dict) -> list[Path]:
