@@ -30,6 +30,7 @@ ROLE = re.compile(r"\{(glue:text|glue|numref|eq|ref|doc|cite(?::[a-z]+)?)\}`([^`
 NAMED = re.compile(r"^(?P<fence>`{3,}|:{3,})\{(?P<kind>glue:figure|figure|list-table|table)\}[^\n]*\n"
                    r"(?P<options>(?::[\w-]+:[^\n]*\n)*)", re.M)
 EQUATION = re.compile(r"^\$\$[ \t]*\n.*?\n\$\$[ \t]*\((?P<label>[^)\s]+)\)[ \t]*$", re.M | re.S)
+FIGURE = re.compile(r"^(?P<fence>`{3,}|:{3,})\{glue:figure\}[^\n]*\n(?P<body>.*?)^(?P=fence)[ \t]*$", re.M | re.S)
 EXPLICIT = re.compile(r"^(?P<text>.*?)\s*<(?P<target>[^<>]+)>$", re.S)
 
 
@@ -120,4 +121,9 @@ def statement(label: str, params: dict | None = None, folder: Path | None = None
             return text.replace("%s", number.split(" ")[-1].strip("()")).replace("{number}", number.split(" ")[-1])
         return number
 
-    return ROLE.sub(role, m.group("title").strip()), ROLE.sub(role, m.group("body").strip())
+    def figure(f: re.Match) -> str:  # a figure of the book within the statement: named, not drawn
+        name = re.search(r"^:name:[ \t]*(\S+)", f.group("body"), re.M)
+        return f"*(The book draws here {refs.get(name.group(1), 'a figure') if name else 'a figure'}.)*"
+
+    body = FIGURE.sub(figure, m.group("body").strip())
+    return ROLE.sub(role, m.group("title").strip()), ROLE.sub(role, body)
