@@ -11,6 +11,7 @@ The student edition is written from the same sources by :func:`write_student_sou
   answer key and its heading (so the numbers are never computed, let alone stored in an executed notebook);
 * the answers package (:mod:`scara.course.answers`, the key) is left out of the copied package, so the take-home
   download of the student edition cannot compute it either;
+* the marking notes of the exercises' declarations are replaced by a line saying where they are;
 * the teacher's page (:data:`INSTRUCTOR_PAGES`) is left out, and out of the table of contents.
 
 ``python -m scara.course edition student`` writes the sources to ``_build/student-source`` and builds them into
@@ -83,6 +84,25 @@ def student_notebook(nb: dict) -> dict:
     return dict(nb, cells=cells)
 
 
+#: what a marking note reads in the student edition
+NOTE = "(the marking note is in the instructor edition)"
+
+
+def without_notes(source: str) -> str:
+    """A chapter's module of exercises (Python source) with every marking note (``note=``) replaced by
+    :data:`NOTE`: a note says what a full answer contains."""
+    import ast  # noqa: PLC0415
+
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            for kw in node.keywords:
+                if kw.arg == "note":
+                    kw.value = ast.Constant(NOTE)
+    return '"""' + (ast.get_docstring(tree) or "") + '"""\n' + ast.unparse(
+        ast.Module(body=tree.body[1:] if ast.get_docstring(tree) else tree.body, type_ignores=[])) + "\n"
+
+
 def write_student_source(out: Path, root: Path = ROOT) -> Path:
     """Write the student edition's sources to ``out`` (emptied first): the book's pages, stripped of their
     solutions, its configuration and extensions, and the package without its answers. Returns ``out``."""
@@ -111,6 +131,8 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
             shutil.copy2(src, out / name)
     shutil.copytree(root / "scara", out / "scara", ignore=shutil.ignore_patterns(
         "__pycache__", "*.pyc", "*.nbi", "*.nbc", "answers"))
+    for module in (out / "scara" / "course" / "chapters").glob("*.py"):
+        module.write_text(without_notes(module.read_text(encoding="utf-8")), encoding="utf-8")
     toc = (out / "_toc.yml").read_text(encoding="utf-8")
     for page in INSTRUCTOR_PAGES:
         toc = re.sub(rf"^[ \t]*- file: book/{page}[ \t]*\n", "", toc, flags=re.M)

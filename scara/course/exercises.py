@@ -21,6 +21,7 @@ import hashlib
 import hmac
 import importlib
 import math
+import numbers
 import re
 from dataclasses import dataclass, field
 
@@ -109,7 +110,9 @@ class Param:
 class Answer:
     """One number an exercise asks for: ``name`` (an identifier), what it is (``text``), the ``unit`` the
     student gives it in and the ``tolerance`` a given value may be off by: relative (``0.01``: 1 %) unless
-    ``absolute`` is set, then in the answer's unit. ``fmt`` is how the key prints it."""
+    ``absolute`` is set, then in the answer's unit. ``fmt`` is how the key prints it. ``shown`` says where the
+    book shows this value for its own numbers, by design (a figure to check a prediction on, a table or a
+    text the exercise reasons from); with other numbers, as in an assignment, nothing shows it."""
 
     name: str
     text: str
@@ -117,6 +120,7 @@ class Answer:
     tolerance: float = 0.01
     absolute: bool = False
     fmt: str = ".4g"
+    shown: str = ""
 
     def __post_init__(self):
         if not re.fullmatch(r"[A-Za-z_]\w*", self.name):
@@ -137,8 +141,6 @@ class Answer:
     def matches(self, expected: float, given) -> bool:
         """Whether ``given`` is within the tolerance of ``expected`` (False for anything not a finite real number:
         text, a bool, an array)."""
-        import numbers  # noqa: PLC0415
-
         if isinstance(given, bool) or not isinstance(given, numbers.Real):
             return False
         try:
@@ -297,6 +299,8 @@ def glue_solution(*labels: str) -> dict:
             continue
         results[label] = solve(label)
         for name, value in results[label].items():
+            if isinstance(value, numbers.Real) and not isinstance(value, (bool, int)):
+                value = float(value)  # a numpy number glues as its repr ("np.float64(...)"), not as a number
             glue(ex.key(name), value, display=False)
     return results
 

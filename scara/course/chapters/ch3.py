@@ -63,7 +63,8 @@ EXERCISES = (
                   "the distance is (Δt / 2 s)² times the reference's; the motion ends 2 s - Δt later."),
     Exercise("ex-traj-rest-to-rest", DOC,
              answers=(Answer("cubic_peak", "peak θ̇2 on p6 -> p7, cubic", "°/s", 0.01),
-                      Answer("quintic_peak", "peak θ̇2 on p6 -> p7, quintic", "°/s", 0.01)),
+                      Answer("quintic_peak", "peak θ̇2 on p6 -> p7, quintic", "°/s", 0.01,
+                             shown="the chapter's comparison table of the three plans")),
              note="Cubic from rest: q̇ = (6Δq/t_f) ν(1-ν), peak 3Δq/(2t_f) at ν = 1/2, |q̈| largest (6|Δq|/t_f²) "
                   "at the ends; quintic: q̇ = (30Δq/t_f) ν²(1-ν)², peak 15Δq/(8t_f), |q̈| at most "
                   "10|Δq|/(√3 t_f²) at ν = 1/2 ∓ √3/6; then the knots' Δθ2 and t_f of p6 -> p7."),

@@ -19,7 +19,8 @@ EXERCISES = (
                   "where σ_max (the norm of J_A) peaks, the arm at its farthest (p_7). Just below, a valid run; "
                   "just above, clik refuses (nothing drawn)."),
     Exercise("ex-clik-relax", DOC,
-             answers=(Answer("w_y", "mean manipulability with y relaxed", "m²", 0.01),
+             answers=(Answer("w_y", "mean manipulability with y relaxed", "m²", 0.01,
+                             shown="the menu of the relaxed-component figure, to check the prediction on"),
                       Answer("w_z", "mean manipulability with z relaxed", "m²", 0.01),
                       Answer("drift_z", "largest drift of z with z relaxed", "m", 0.02)),
              note="Relaxing y raises w as relaxing x does (y drifts); relaxing z frees only d_3, along which "

@@ -12,7 +12,8 @@ EXERCISES = (
                            low=20.0, high=40.0, step=5.0),
                      Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest",
                            low=0.2, high=1.0, step=0.1)),
-             answers=(Answer("sag_mm", "(a) the quill's sag at rest (the other joints: none)", "mm", 0.01),
+             answers=(Answer("sag_mm", "(a) the quill's sag at rest (the other joints: none)", "mm", 0.01,
+                             shown="the chapter's text computes the PD sag for these numbers, with (6.9)"),
                       Answer("omega_min", "(b) the smallest pole keeping the sag within the bound", "rad/s", 0.01)),
              note="(a) Only the quill sags, by m3 g0 / (omega^2 B_bar33): the revolute joints carry no gravity. "
                   "(b) omega >= sqrt(m3 g0 / (B_bar33 sag)), far below 1/T, so sampling allows it. (c) The sag only "
@@ -38,7 +39,8 @@ EXERCISES = (
     Exercise("ex-ctl-no-robust", DOC,
              params=(Param("m_L", 5.0, **_PAYLOAD),
                      Param("rho", 1e-4, "m/s²", ".0e", "the negligible robust term")),
-             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01),),
+             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01,
+                             shown="the slider of the chapter's boundary-layer figure prints it at this layer width"),),
              note="Without w the law is PD with a constant diagonal B_hat and gravity compensation without the "
                   "payload; at rest B_hat33 K_P3 e_z carries the weight: e_z = m_L g0 / (B_hat33 K_P3)."),
     Exercise("ex-ctl-wider-layer", DOC,
