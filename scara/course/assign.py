@@ -83,20 +83,27 @@ def assignable(ex: Exercise) -> bool:
     return True
 
 
-def exercise_table():
-    """The book's exercises as a teacher chooses among them (a DataFrame): number, label, what is asked (the
-    answers with their units, or "argument"), the parameters an assignment draws, and whether it can be set."""
-    import pandas as pd  # noqa: PLC0415
+BOOK_NUMBERS = "nothing: the book's numbers"
 
-    rows = []
+
+def exercise_table():
+    """The book's exercises as a teacher chooses among them, as a Markdown table: number and label, what is asked
+    (each answer with its unit and tolerance, or an argument), the numbers an assignment draws for each student
+    (with their ranges), and whether it can be set."""
+    from IPython.display import Markdown  # noqa: PLC0415
+
+    def cell(text: str) -> str:
+        return str(text).replace("|", "\\|").replace("\n", " ")
+
+    lines = ["| Exercise | Asks for | Drawn for each student | Can be set |", "|---|---|---|---|"]
     for ex in catalog().values():
-        drawn = ", ".join(f"{p.text} ({p.show(p.values()[0])} to {p.show(p.values()[-1])} {p.unit})".replace(" )", ")")
+        asked = "; ".join(f"{a.text} ({a.unit + ', ' if a.unit else ''}{a.tolerance_text()})" for a in ex.answers)
+        drawn = "; ".join(f"{p.text}: {p.show(p.values()[0])} to {p.show(p.values()[-1])} {p.unit}".rstrip()
+                          if not p.choices else f"{p.text}: one of {', '.join(p.show(v) for v in p.choices)} {p.unit}"
                           for p in ex.params if p.varies)
-        asked = "; ".join(f"{a.text} ({a.unit}, {a.tolerance_text()})" if a.unit else f"{a.text} ({a.tolerance_text()})"
-                          for a in ex.answers) or "an argument (marking note)"
-        rows.append({"Exercise": ex.number, "Label": ex.label, "Answers": asked, "Drawn for each student": drawn or "-",
-                     "Can be set": "yes" if assignable(ex) else "no"})
-    return pd.DataFrame(rows).set_index("Exercise")
+        lines.append(f"| {ex.number} `{ex.label}` | {cell(asked or 'an argument (see its marking note)')} | "
+                     f"{cell(drawn or BOOK_NUMBERS)} | {'yes' if assignable(ex) else 'no'} |")
+    return Markdown("\n".join(lines))
 
 
 def answer_variable(ex: Exercise, name: str) -> str:

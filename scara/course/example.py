@@ -6,11 +6,12 @@ lag of the second-order CLIK): one who did the work, one who slipped on the unit
 """
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["command", "example_submissions", "parameters_table", "ROSTER", "EXERCISES"]
+__all__ = ["command", "example_submissions", "parameters_table", "quoted", "marks_table", "ROSTER", "EXERCISES"]
 
 #: the worked example's class
 ROSTER = "id,name\nada,Ada Lovelace\nalan,Alan Turing\ngrace,Grace Hopper\n"
@@ -94,3 +95,25 @@ def example_submissions(assignments: Path, out: Path, key: dict) -> list[Path]:
         nbformat.write(nb, path)
         paths.append(path)
     return paths
+
+
+def quoted(markdown: str):
+    """``markdown`` (a notebook's cells, a feedback file) shown as a quotation within a page: its headings in bold,
+    so that they do not become the page's own sections."""
+    from IPython.display import Markdown  # noqa: PLC0415
+
+    lines = [re.sub(r"^#+\s+(.*)$", r"**\1**", line) for line in markdown.strip().splitlines()]
+    return Markdown("\n".join(f"> {line}".rstrip() for line in lines))
+
+
+def marks_table(path: Path):
+    """``marks.csv`` as a Markdown table: student, score and the run's mark line."""
+    import csv  # noqa: PLC0415
+
+    from IPython.display import Markdown  # noqa: PLC0415
+
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    lines = ["| Student | Score | Run |", "|---|---|---|"]
+    lines += [f"| {r['student']} | {r['score']} / {r['max_score']} | {r['status']} |" for r in rows]
+    return Markdown("\n".join(lines))

@@ -320,6 +320,9 @@ def answer_key_rows(docname: str, params: dict | None = None) -> list[dict]:
             rows.append({"number": ex.number, "label": ex.label, "answer": a.name, "text": a.text,
                          "value": result[a.name], "shown": format(result[a.name], a.fmt), "unit": a.unit,
                          "tolerance": a.tolerance_text()})
+        if ex.note:  # what a full answer argues besides its numbers
+            rows.append({"number": ex.number, "label": ex.label, "answer": "", "text": ex.note, "value": None,
+                         "unit": "", "tolerance": ""})
     return rows
 
 

@@ -301,7 +301,8 @@ def grade(key_path: Path, submissions: Path, out: Path, timeout: float = 60.0, m
         with ThreadPoolExecutor(max_workers=jobs) as pool:
             for sub in pool.map(lambda s: _run_one(s, names_of(key, s.student), base, timeout, memory_mb, cache),
                                 todo):
-                log(f"{sub.path.name}: {sub.status} in {sub.seconds:.1f} s")
+                said = STATUS_TEXT[sub.status].format(timeout=timeout, memory=memory_mb, first=sub.detail)
+                log(f"{sub.path.name}: {said.split(' (')[0]}, in {sub.seconds:.1f} s")
     finally:
         shutil.rmtree(base, ignore_errors=True)
     rows = []

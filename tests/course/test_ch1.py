@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from scara import ScaraParams, pose
-from scara.course.exercises import chapter_exercises, draw, exercise, solve
+from scara.course.exercises import draw, exercise, solve
 from scara.errors import ScaraError
 
 P = ScaraParams()
@@ -23,12 +23,6 @@ def dh(a, d, theta):
     return np.array([[c, -s, 0, a * c], [s, c, 0, a * s], [0, 0, 1, d], [0, 0, 0, 1.0]])
 
 
-def test_every_numeric_exercise_draws_thirty_sets():
-    for ex in chapter_exercises("01_kinematics"):
-        if ex.numeric:
-            for i in range(30):
-                params, results = draw(ex, b"tests-ch1", f"s{i}")
-                assert all(math.isfinite(results[a.name]) for a in ex.answers)
 
 
 @pytest.mark.parametrize("params,res", drawn("ex-kin-direct"))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from scara import ScaraParams, jacobian, manipulability, pose
-from scara.course.exercises import chapter_exercises, draw, exercise, solve
+from scara.course.exercises import draw, exercise, solve
 from scara.errors import ScaraError
 
 P = ScaraParams()
@@ -26,12 +26,6 @@ def sweep(arm, n=36001):
     return np.asarray(manipulability(qs, arm)), np.hypot(*pose(qs, arm)[:, :2].T)
 
 
-def test_every_numeric_exercise_draws_thirty_sets():
-    for ex in chapter_exercises("02_manipulability"):
-        if ex.numeric:
-            for i in range(30):
-                params, results = draw(ex, b"tests-ch2", f"s{i}")
-                assert all(math.isfinite(results[a.name]) for a in ex.answers)
 
 
 def test_best_by_sweep():

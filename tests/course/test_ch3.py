@@ -100,7 +100,7 @@ def test_stop_at_p4():
 
 
 def test_half_anticipation_square_law():
-    d_ref = solve("ex-traj-stop")  # noqa: F841 (warms the reference)
+    solve("ex-traj-stop")  # warms the reference
     for params, r in drawn("ex-traj-half-anticipation"):
         dt = params["antic"]
         assert r["d_mm"] == pytest.approx(r["d_ref_mm"] * (dt / 2.0) ** 2, rel=1e-6)

@@ -1,7 +1,6 @@
 """Chapter 6's exercise computations against closed forms and scalings they must obey, for a few drawn sets."""
 import math
 
-import numpy as np
 import pytest
 
 from scara.course.exercises import draw_params, exercise, solve

@@ -2,6 +2,7 @@
 the assignments and the offline grading of honest and hostile submissions."""
 import csv
 import json
+import math
 import re
 import shutil
 import subprocess
@@ -204,6 +205,17 @@ def test_only_numeric_exercises_with_their_own_numbers_can_be_set(tmp_path):
     if arguments:
         with pytest.raises(ScaraError, match="argument"):
             assign(_roster(tmp_path / "r.csv", 1), SECRET, tmp_path / "o", [arguments[0].label], log=lambda *a: None)
+
+
+@pytest.mark.parametrize("docname", list(DOCNAMES))
+def test_every_numeric_exercise_draws_thirty_meaningful_sets(docname):
+    for ex in chapter_exercises(docname):
+        if ex.numeric:
+            for i in range(30):
+                params, results = draw(ex, SECRET, f"s{i:03d}")
+                assert all(math.isfinite(results[a.name]) for a in ex.answers), (ex.label, params)
+                for p in ex.params:
+                    assert params[p.name] in p.values(), (ex.label, p.name)
 
 
 def test_every_settable_exercise_draws_for_a_class(tmp_path):

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from types import SimpleNamespace
 
 import numpy as np
 from scipy.optimize import brentq
@@ -34,6 +33,18 @@ def _rest(run):
 
 def _stop_time(exc: UnstableError) -> float:
     return float(str(exc).split("t = ")[1].split(" s")[0])
+
+
+def _stopped(run, label: str, what: str, cause: str = "") -> float:
+    """The time at which ``run()`` is stopped as diverging (its UnstableError naming ``cause``); a run that
+    completes means the exercise's parameters miss its point: ScaraError, saying ``what`` completed."""
+    try:
+        run()
+    except UnstableError as exc:
+        if cause not in str(exc):
+            raise
+        return _stop_time(exc)
+    raise ScaraError(f"exercise {label}: {what} completes")
 
 
 def _payload(m_L: float) -> None:
@@ -97,14 +108,8 @@ def ij_windup(bound_fig: float, bound: float) -> dict:
                    plant, joint_reference=ref)
     tight = (200.0, 200.0, bound, 50.0)
     aw = simulate(IndependentJointController(tau_max=tight), traj, plant, joint_reference=ref)
-    try:
-        IndependentJointController(tau_max=tight, anti_windup=False).run(traj, plant, joint_reference=ref)
-    except UnstableError as exc:
-        if "max_error" not in str(exc):
-            raise
-        stop = _stop_time(exc)
-    else:
-        raise ScaraError(f"exercise ex-ctl-ij-windup: without anti-windup the run at {bound} N completes")
+    stop = _stopped(lambda: IndependentJointController(tau_max=tight, anti_windup=False).run(
+        traj, plant, joint_reference=ref), "ex-ctl-ij-windup", f"without anti-windup the run at {bound} N", "max_error")
     return {"integral_N": float(-fig.integral_action_3.min()), "weight": weight,
             "last_clipped": float(aw.t[np.flatnonzero(aw.saturated > 0)[-1]]),
             "max_um": 1e6 * control_summary(aw)["max_position_error"], "stop": stop,
@@ -208,14 +213,8 @@ def sampling_limit(rho: float) -> dict:
     if not ctl.B_hat[0] * rho > ctl.tau_max[0]:
         raise ScaraError(f"exercise ex-ctl-sampling-limit: rho = {rho} cannot drive joint 1 past its bound")
     run = simulate(ctl, traj, plant, joint_reference=ref)
-    try:
-        RobustController(rho=rho, epsilon=0.8 * eps).run(traj, plant, joint_reference=ref)
-    except UnstableError as exc:
-        if "tau_max" not in str(exc):
-            raise
-        stop = _stop_time(exc)
-    else:
-        raise ScaraError(f"exercise ex-ctl-sampling-limit: the run at 0.8 eps_min with rho = {rho} completes")
+    stop = _stopped(lambda: RobustController(rho=rho, epsilon=0.8 * eps).run(traj, plant, joint_reference=ref),
+                    "ex-ctl-sampling-limit", f"the run at 0.8 eps_min with rho = {rho}", "tau_max")
     return {"eps_min": eps, "lam_max": lam_max, "chat": chattering(run), "sag_mm": 1e3 * run.e[_rest(run), 2].mean(),
             "b11rho": ctl.B_hat[0] * rho, "tau1max": ctl.tau_max[0], "B_hat11": ctl.B_hat[0], "stop": stop}
 
@@ -241,12 +240,8 @@ def integral_limit(m_L: float, K_P: float, K_D: float) -> dict:
     disc = brentq(lambda k: sampled_radius(k) - 1.0, 0.5 * cont, cont)
     simulate(OperationalSpaceController(K_P=K_P, K_D=K_D, K_I=0.98 * disc), traj, plant)  # completes
     c = OperationalSpaceController(K_P=K_P, K_D=K_D, K_I=1.02 * disc)
-    try:
-        simulate(c, traj, plant)
-    except UnstableError as exc:
-        stop = _stop_time(exc)
-    else:
-        raise ScaraError(f"exercise ex-ctl-integral-limit: with {m_L} kg the run 2 % above the limit completes")
+    stop = _stopped(lambda: simulate(c, traj, plant), "ex-ctl-integral-limit",
+                    f"with {m_L} kg the run 2 % above the limit")
     book = OperationalSpaceController()
     return {"routh": routh, "cont": cont, "disc": disc, "beta": beta, "stop": stop, "f3max": float(c.tau_max[2]),
             "routh_book": float(book.K_D[2] * book.K_P[2]), "B33_hat": B33_hat, "B33": B33,

@@ -53,8 +53,7 @@ EXERCISES = (
                            choices=(30.0, 20.0, 10.0, 5.0)),),
              answers=(Answer("s1", "major velocity semi-axis σ1", "m/s", 0.01,
                              shown="the slider of the stretched-arm figure, to check the prediction on"),
-                      Answer("s2", "minor velocity semi-axis σ2", "m/s", 0.01,
-                             shown="the slider of the stretched-arm figure, to check the prediction on"),
+                      Answer("s2", "minor velocity semi-axis σ2", "m/s", 0.01),
                       Answer("f2", "largest force semi-axis 1/σ2", "N", 0.01)),
              note="σ1 σ2 = w = a1 a2 sin θ2 and σ1² + σ2² = trace(H Hᵀ) = a1² + 2 a2² + 2 a1 a2 cos θ2 give both "
                   "semi-axes; 1/σ2 is the force semi-axis. The ellipse becomes thin along the line from the axis to "

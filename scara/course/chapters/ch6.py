@@ -39,14 +39,14 @@ EXERCISES = (
     Exercise("ex-ctl-no-robust", DOC,
              params=(Param("m_L", 5.0, **_PAYLOAD),
                      Param("rho", 1e-4, "m/s²", ".0e", "the negligible robust term")),
-             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01,
-                             shown="the slider of the chapter's boundary-layer figure prints it at this layer width"),),
+             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01),),
              note="Without w the law is PD with a constant diagonal B_hat and gravity compensation without the "
                   "payload; at rest B_hat33 K_P3 e_z carries the weight: e_z = m_L g0 / (B_hat33 K_P3)."),
     Exercise("ex-ctl-wider-layer", DOC,
              params=(Param("epsilon", 0.2, "", ".4g", "width of the boundary layer (a width of the figure's slider)",
                            choices=(0.0623, 0.092, 0.1359, 0.2)),),
-             answers=(Answer("sag_mm", "the sag at rest", "mm", 0.01),
+             answers=(Answer("sag_mm", "the sag at rest", "mm", 0.01,
+                             shown="the slider of the chapter's boundary-layer figure prints it at this width"),
                       Answer("margin", "the margin epsilon / epsilon_min to the sampling limit", "", 0.01)),
              note="The layer's gain rho lambda / epsilon falls, so the sag m_L g0 / (B_hat33 (K_P3 + rho lambda / "
                   "epsilon)) grows; in exchange the torque is smoother (lower chattering) and the layer is further "
