@@ -162,6 +162,10 @@ def _mathjax(out: Path) -> str:
     return "../_mathjax/tex-chtml.js"
 
 
+MATHJAX_CONFIG = ("<script>window.MathJax = {tex: {inlineMath: [['$', '$'], ['\\\\(', '\\\\)']], "
+                  "displayMath: [['$$', '$$'], ['\\\\[', '\\\\]']], processEscapes: true}};</script>\n")
+
+
 def _html(nb, mathjax: str) -> str:
     from nbconvert import HTMLExporter  # noqa: PLC0415
 
@@ -171,7 +175,12 @@ def _html(nb, mathjax: str) -> str:
     exporter.exclude_output_prompt = True
     body, _ = exporter.from_notebook_node(nb)
     # nothing from the network: the page works offline (the lab template's require.js is only for widgets)
-    return re.sub(r'<script[^>]+src="https?://[^"]*"[^>]*>\s*</script>', "", body)
+    body = re.sub(r'<script[^>]+src="https?://[^"]*"[^>]*>\s*</script>', "", body)
+    # the template configures MathJax 2; the copy is MathJax 3, which reads $...$ once told so, before it loads
+    load = f'<script src="{mathjax}"> </script>'
+    if mathjax and load in body:
+        body = body.replace(load, MATHJAX_CONFIG + load)
+    return body
 
 
 def assign(roster: Path, secret: bytes, out: Path, labels: list[str] | None = None,

@@ -196,6 +196,9 @@ def test_assignments_are_personal_reproducible_and_keep_the_secret(tmp_path):
     html = (tmp_path / "a" / "stu-000" / "assignment.html").read_text()
     assert '<script src="../_mathjax/tex-chtml.js' in html or 'src="../_mathjax/tex-chtml.js' in html
     assert not re.search(r'<script[^>]+src="https?:', html)
+    # MathJax 3 (the offline copy) is told to read $...$ before it loads
+    assert html.index("inlineMath: [['$', '$']") < html.index('src="../_mathjax/tex-chtml.js"')
+    assert (tmp_path / "a" / "_mathjax" / "tex-chtml.js").is_file()
 
 
 def test_only_numeric_exercises_with_their_own_numbers_can_be_set(tmp_path):
