@@ -25,7 +25,7 @@ import time
 from pathlib import Path
 
 from scara.course.exercises import Exercise, catalog, draw, exercise
-from scara.course.statement import statement
+from scara.course.statement import readable, statement
 from scara.errors import ScaraError
 
 __all__ = ["exercise_table", "assign", "read_roster", "read_secret", "assignable", "answer_variable", "MIN_SECRET"]
@@ -93,7 +93,7 @@ def exercise_table():
     from IPython.display import Markdown  # noqa: PLC0415
 
     def cell(text: str) -> str:
-        return str(text).replace("|", "\\|").replace("\n", " ")
+        return readable(str(text)).replace("|", "\\|").replace("\n", " ")
 
     lines = ["| Exercise | Asks for | Drawn for each student | Can be set |", "|---|---|---|---|"]
     for ex in catalog().values():
@@ -136,7 +136,8 @@ def _notebook(title: str, student: dict, items: list) -> object:
         head, body = statement(ex.label, params)
         nb.cells.append(_md(f"## Exercise {ex.number}: {head}\n\n{body}"))
         nb.cells.append(nbformat.v4.new_code_cell("# your work\n"))
-        asked = "\n".join(f"- `{answer_variable(ex, a.name)}`: {a.text}, in {a.unit or 'no unit'}" for a in ex.answers)
+        asked = "\n".join(f"- `{answer_variable(ex, a.name)}`: {readable(a.text)}, in {a.unit or 'no unit'}"
+                          for a in ex.answers)
         nb.cells.append(_md(f"Your answer{'s' if len(ex.answers) > 1 else ''} to Exercise {ex.number}:\n\n{asked}"))
         cell = nbformat.v4.new_code_cell("\n".join(
             f"{answer_variable(ex, a.name)} = None  # {a.unit}".rstrip() for a in ex.answers))
@@ -232,7 +233,8 @@ def assign(roster: Path, secret: bytes, out: Path, labels: list[str] | None = No
         (folder / "assignment.html").write_text(_html(nb, mathjax), encoding="utf-8")
         key["students"][sid] = {"name": student["name"], "params": {ex.label: p for ex, p, _ in items},
                                 "answers": {answer_variable(ex, a.name): {
-                                    "label": ex.label, "number": ex.number, "answer": a.name, "text": a.text,
+                                    "label": ex.label, "number": ex.number, "answer": a.name,
+                                    "text": readable(a.text),
                                     "expected": r[a.name], "unit": a.unit, "tolerance": a.tolerance,
                                     "absolute": a.absolute, "fmt": a.fmt} for ex, _, r in items for a in ex.answers}}
         log(f"{sid}: {len(items)} exercises")

@@ -50,6 +50,7 @@ def parameters_table(key: dict):
     import pandas as pd  # noqa: PLC0415
 
     from scara.course.exercises import exercise  # noqa: PLC0415
+    from scara.course.statement import readable  # noqa: PLC0415
 
     rows = {}
     for sid, student in key["students"].items():
@@ -58,7 +59,8 @@ def parameters_table(key: dict):
             for name, value in params.items():
                 p = ex.param(name)
                 if p.varies:
-                    rows.setdefault((f"{ex.number}", f"{p.text} ({p.unit})" if p.unit else p.text), {})[
+                    text = readable(p.text)
+                    rows.setdefault((f"{ex.number}", f"{text} ({p.unit})" if p.unit else text), {})[
                         student["name"]] = p.show(value)
     table = pd.DataFrame.from_dict(rows, orient="index")
     table.index.names = ["Exercise", "Parameter"]

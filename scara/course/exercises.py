@@ -331,9 +331,11 @@ def answer_key(docname: str):
     tolerance, and the marking note of each exercise answered by an argument."""
     from IPython.display import Markdown  # noqa: PLC0415
 
+    from scara.course.statement import readable  # noqa: PLC0415
+
     lines = ["| Exercise | Asked | Answer | Unit | Tolerance |", "|---|---|---|---|---|"]
     for r in answer_key_rows(docname):
-        cell = lambda s: str(s).replace("|", "\\|").replace("\n", " ")  # noqa: E731
+        cell = lambda s: readable(str(s)).replace("|", "\\|").replace("\n", " ")  # noqa: E731
         if r["value"] is None:
             lines.append(f"| {r['number']} | marking note | {cell(r['text'])} | | |")
         else:

@@ -21,7 +21,7 @@ from pathlib import Path
 from scara.course.exercises import DOCNAMES, chapter_prefix, exercise
 from scara.errors import ScaraError
 
-__all__ = ["book_folder", "references", "statement", "BLOCK"]
+__all__ = ["book_folder", "references", "statement", "readable", "BLOCK"]
 
 #: an ``{exercise}`` block: fence, title, options, body
 BLOCK = re.compile(r"^(?P<fence>`{3,}|:{3,})\{exercise\}[ \t]*(?P<title>[^\n]*)\n(?P<options>(?::[\w-]+:[^\n]*\n)*)"
@@ -127,3 +127,18 @@ def statement(label: str, params: dict | None = None, folder: Path | None = None
 
     body = FIGURE.sub(figure, m.group("body").strip())
     return ROLE.sub(role, m.group("title").strip()), ROLE.sub(role, body)
+
+
+def readable(text: str, folder: Path | None = None) -> str:
+    """``text`` (a marking note, a parameter's description) with each label of the book it names written as the
+    book prints a reference to it: "(eq-kin-det)" as "(1.7)", "fig-ch5-inertia-elbow" as "Fig. 5.5"."""
+    refs = references(str(Path(folder or book_folder())))
+
+    def name(m: re.Match) -> str:
+        label = m.group("label")
+        if label not in refs:
+            return m.group(0)
+        number = refs[label]
+        return number if number.startswith("(") else (f"({number})" if m.group("open") else number)
+
+    return re.sub(r"(?P<open>\()?(?P<label>(?:eq|fig|tab|ex)-[\w-]+)(?(open)\))", name, text)
