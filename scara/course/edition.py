@@ -109,6 +109,9 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
     out = Path(out)
     if out.resolve() == root.resolve() or root.resolve() in out.resolve().parents and out.name in ("book", "scara"):
         raise ScaraError(f"refusing to write the student edition over the sources: {out}")
+    if out.exists() and any(out.iterdir()) and not (out / "EDITION").is_file():
+        raise ScaraError(f"refusing to empty {out}: it holds files and is not a student edition this command wrote "
+                         f"(no EDITION file); give a new or empty folder")
     if out.exists():
         shutil.rmtree(out)
     (out / "book").mkdir(parents=True)

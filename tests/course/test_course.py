@@ -127,6 +127,16 @@ def test_student_notebook_has_no_solution():
         edition.strip_solutions("```{solution} ex-a\nnever closed\n")
 
 
+def test_student_source_never_empties_a_folder_it_did_not_write(tmp_path):
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "thesis.tex").write_text("years of work")
+    with pytest.raises(ScaraError, match="refusing to empty"):
+        edition.write_student_source(tmp_path / "mine")
+    assert (tmp_path / "mine" / "thesis.tex").read_text() == "years of work"
+    with pytest.raises(ScaraError, match="over the sources"):
+        edition.write_student_source(ROOT)
+
+
 def test_student_source_holds_no_solution_and_no_answers(tmp_path):
     out = edition.write_student_source(tmp_path / "student")
     assert not (out / "scara" / "course" / "answers").exists()
