@@ -357,26 +357,18 @@ def draw_params(ex: Exercise, secret: bytes, student: str, attempt: int = 0) -> 
     return out
 
 
-def draw(ex: Exercise, secret: bytes, student: str, attempts: int = 50, taken: set | None = None):
+def draw(ex: Exercise, secret: bytes, student: str, attempts: int = 50):
     """A meaningful parameter set of ``ex`` for one student and its answers: sets are drawn (:func:`draw_params`)
     until one is answered by the package without error (a reachable point, a stable gain, a payload the arm
-    carries) and, where ``taken`` (a set of frozen parameter sets) is given, differs from every set in it.
-    Returns ``(params, results)``; raises :class:`~scara.errors.ScaraError` when no such set turns up in
-    ``attempts`` draws (the ranges are too narrow, or mostly meaningless)."""
+    carries). Returns ``(params, results)``; raises :class:`~scara.errors.ScaraError` when no such set turns up in
+    ``attempts`` draws (the ranges are too narrow, or mostly meaningless). That no two students of a roster share
+    a set is :func:`scara.course.assign.assign`'s to ensure."""
     reasons = []
     for attempt in range(attempts):
         params = draw_params(ex, secret, student, attempt)
-        frozen = tuple(sorted(params.items()))
-        if taken is not None and any(p.varies for p in ex.params) and frozen in taken:
-            reasons.append("taken")
-            continue
         try:
-            results = solve(ex.label, params)
+            return params, solve(ex.label, params)
         except ScaraError as exc:
             reasons.append(str(exc).split("\n")[0])
-            continue
-        if taken is not None:
-            taken.add(frozen)
-        return params, results
     raise ScaraError(f"exercise {ex.label!r}: no meaningful parameter set for student {student!r} in {attempts} "
                      f"draws; the last refusals: {reasons[-3:]}")

@@ -52,6 +52,8 @@ MAX_FILE = 64 * 2**20
 MAX_RESULT = 1_000_000
 #: what the kernel needs besides the cells' own time: its start, the package's import
 STARTUP = 45.0
+#: the wall time of a whole notebook, in cell time limits (cells past theirs are interrupted; this bounds the rest)
+WALL_CELLS = 4
 
 STATUS_TEXT = {
     "ok": "ran to the end",
@@ -177,7 +179,7 @@ def _run_one(sub: Submission, names: list[str], base: Path, timeout: float, memo
             env["NUMBA_CACHE_DIR"] = str(work / "numba-cache")
         command = [sys.executable, "-m", "scara.course._runner", str(work / "submission.ipynb"),
                    str(work / "result.json"), f"{timeout:g}", ",".join(names)]
-        wall = timeout * max(1, 4) + STARTUP
+        wall = WALL_CELLS * timeout + STARTUP
         proc = subprocess.Popen(sandbox_command(work, command, env), stdin=subprocess.DEVNULL,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                                 preexec_fn=_limits(memory_mb, int(wall) + 10))
