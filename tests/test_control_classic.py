@@ -308,3 +308,28 @@ def test_steady_state_error_inputs():
     with pytest.raises(ScaraError, match="ScaraParams"):
         c.steady_state_error("plant")
     assert np.all(c.steady_state_error(P0) == 0)
+
+
+# --------------------------------------------------------------------------------------------------
+# the live panel
+# --------------------------------------------------------------------------------------------------
+def test_live_panel_offers_both_laws(traj):
+    from scara.plots._common import CONTROLLER_LABELS
+    from scara.programs.control import SHOWN
+    from scara.widgets import control_panel
+    from scara.widgets.control import make_controller
+
+    for key, cls in (("pd_plus_gravity", PDPlusGravityController), ("computed_torque", ComputedTorqueController)):
+        c = make_controller(CONTROLLER_LABELS[key], 900, 60, 30, 20, 0.05, 1.0, 0.01, 8000, 50.0)
+        assert isinstance(c, cls) and np.all(c.omega == 50.0)
+    panel = control_panel(traj)
+    for key in ("pd_plus_gravity", "computed_torque"):
+        panel.controls["controller"].value = CONTROLLER_LABELS[key]
+        assert panel.last_error is None
+        assert not panel.controls["omega"].disabled and panel.controls["K_P"].disabled
+        assert panel.state[f"{key}_shown"] == 1.0 and sum(panel.state[f] for f in SHOWN) == 1.0
+        # the note: the quill's sag at rest against the law's own formula (e_z = m_L g0 / K_P3 here)
+        assert panel.state["theory_mm"] == pytest.approx(1e3 * 5.0 * G0 / (30.0 ** 2 * 22.5), rel=1e-3)
+        assert panel.state["steady_z_error_mm"] == pytest.approx(panel.state["theory_mm"], rel=1e-9)
+    panel.controls["omega"].value = 1.0   # the sag m_L g0 / (B33 omega^2) passes max_error
+    assert "max_error" in panel.last_error
