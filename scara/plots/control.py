@@ -395,7 +395,7 @@ def joint_error_figure(results, predicted: dict | None = None, points: int = 100
             fig.add_trace(_line([r.t[0], r.t[-1]], [1e3 * e[2]] * 2, f"predicted at rest · {label}",
                                 run_colour(r), dash="dot", width=1.2, showlegend=False, legendgroup=label),
                           row=3, col=1)
-    finish_layout(fig, title or "Joint errors (5 kg payload, unknown to the controllers)", height)
+    finish_layout(fig, title or "Joint errors<br>(5 kg payload, unknown to the controllers)", height)
     return stacked_axes(fig, tuple(f"{n}_d − {n} ({'mm' if j == 2 else 'mrad'})" for j, n in enumerate(JOINT_NAMES)))
 
 
