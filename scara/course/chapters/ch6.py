@@ -4,14 +4,14 @@ from scara.course.exercises import Answer, Exercise, Param
 DOC = "06_control"
 
 _PAYLOAD = dict(unit="kg", fmt=".1f", text="payload the controller does not know", low=1.0, high=10.0, step=0.5)
+#: the double pole the PD gains are placed at, and the largest sag a design must respect (one declaration each)
+_PD_POLE = Param("omega", 30.0, "rad/s", ".0f", "double pole of the PD loops", low=20.0, high=40.0, step=5.0)
+_SAG_MAX = Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest", low=0.2, high=1.0,
+                 step=0.1)
 
 EXERCISES = (
     Exercise("ex-ctl-ij-pd", DOC,
-             params=(Param("m_L", 5.0, **_PAYLOAD),
-                     Param("omega", 30.0, "rad/s", ".0f", "double pole of the PD loops",
-                           low=20.0, high=40.0, step=5.0),
-                     Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest",
-                           low=0.2, high=1.0, step=0.1)),
+             params=(Param("m_L", 5.0, **_PAYLOAD), _PD_POLE, _SAG_MAX),
              answers=(Answer("sag_mm", "(a) the quill's sag at rest (the other joints: none)", "mm", 0.01,
                              shown="the chapter's text computes the PD sag for these numbers, with (6.9)"),
                       Answer("omega_min", "(b) the smallest pole keeping the sag within the bound", "rad/s", 0.01)),
@@ -37,9 +37,7 @@ EXERCISES = (
                   "overshoots. (b) With anti-windup the run completes, the force longer at its bound; without it "
                   "the little room cannot unwind the integral, the swings grow and the error bound stops the run."),
     Exercise("ex-ctl-pdg-sag", DOC,
-             params=(Param("m_L", 5.0, **_PAYLOAD),
-                     Param("omega", 30.0, "rad/s", ".0f", "double pole the PD gains are placed at",
-                           low=20.0, high=40.0, step=5.0)),
+             params=(Param("m_L", 5.0, **_PAYLOAD), _PD_POLE),
              answers=(Answer("sag_mm", "(a) the quill's sag at rest", "mm", 0.01,
                              shown="the chapter's text computes it for the book's numbers, with (eq-ctl-pdg-sag)"),
                       Answer("ratio", "(b) that sag over the independent-joint PD's with the same gains", "", 0.01)),
@@ -48,9 +46,7 @@ EXERCISES = (
                   "(c) With an exact g_hat the rest is the set point itself, for any positive K_P (La Salle); K_P "
                   "still decides how fast the arm gets there, and how far a disturbance pushes it."),
     Exercise("ex-ctl-ct-omega", DOC,
-             params=(Param("m_L", 5.0, **_PAYLOAD),
-                     Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest",
-                           low=0.2, high=1.0, step=0.1)),
+             params=(Param("m_L", 5.0, **_PAYLOAD), _SAG_MAX),
              answers=(Answer("omega_min", "(a) the smallest omega keeping the sag within the bound", "rad/s", 0.01),),
              note="(a) The sag m_L g0 / (B_hat33 omega^2) falls as 1/omega^2: omega >= sqrt(m_L g0 / (B_hat33 "
                   "sag_max)) (the rotor coupling adds a few parts in 10^4). (b) omega T stays far below "
