@@ -54,11 +54,36 @@ def test_pd_plus_gravity_law_matches_numpy(state, omega, m_L):
     model = P0.with_payload(m_L)   # any belief: g_hat comes from it
     c = PDPlusGravityController(omega=omega, model=model, tau_max=[1e9] * 4)
     ref = np.concatenate([q + e, qd + ed, qdd_d])
+    e, ed = ref[:4] - q, ref[4:8] - qd   # the errors the law sees (q + e - q is e to a rounding)
     code, tau, sig = _step(c, q, qd, ref)
     want = c.K_P * e + c.K_D * ed + np.array([0.0, 0.0, -(model.m_l3 + m_L) * model.g0, 0.0])
     assert code == 0
     np.testing.assert_allclose(tau, want, rtol=1e-13, atol=1e-12 * np.abs(want).max())
     assert sig[0] == gravity(q, model)[2]
+
+
+def _model_by_hand(q, qd, p):
+    """``B(q)``, ``C(q, qd) qd``, ``F qd`` and ``g`` written out from the arm's parameters (rotors on the links
+    before them, the payload on the quill's axis), apart from scara.dynamics."""
+    m3 = p.m_l3 + p.m_L
+    a1, a2, l1, l2 = p.a1, p.a2, p.l1, p.l2
+    kr, Im = np.asarray(p.k_r), np.asarray(p.I_m)
+    c2, s2 = math.cos(q[1]), math.sin(q[1])
+    B = np.zeros((4, 4))
+    B[0, 0] = (p.I_l1 + p.m_l1 * l1 ** 2 + kr[0] ** 2 * Im[0] + p.I_l2 + p.m_l2 * (a1 ** 2 + l2 ** 2 + 2 * a1 * l2 * c2)
+               + m3 * (a1 ** 2 + a2 ** 2 + 2 * a1 * a2 * c2) + p.I_l4 + Im[1] + Im[2] + Im[3])
+    B[0, 1] = p.I_l2 + p.m_l2 * (l2 ** 2 + a1 * l2 * c2) + m3 * (a2 ** 2 + a1 * a2 * c2) + p.I_l4 + kr[1] * Im[1] + Im[2] + Im[3]
+    B[1, 1] = p.I_l2 + p.m_l2 * l2 ** 2 + m3 * a2 ** 2 + p.I_l4 + kr[1] ** 2 * Im[1] + Im[2] + Im[3]
+    B[0, 2] = B[1, 2] = kr[2] * Im[2]
+    B[2, 2] = m3 + kr[2] ** 2 * Im[2]
+    B[0, 3] = B[1, 3] = p.I_l4 + kr[3] * Im[3]
+    B[3, 3] = p.I_l4 + kr[3] ** 2 * Im[3]
+    B = np.triu(B) + np.triu(B, 1).T
+    h = a1 * (p.m_l2 * l2 + m3 * a2) * s2                  # the Christoffel symbols of B: only B11, B12 vary
+    Cqd = np.array([-h * (2 * qd[0] * qd[1] + qd[1] ** 2), h * qd[0] ** 2, 0.0, 0.0])
+    F = kr ** 2 * np.asarray(p.F_m)
+    g = np.array([0.0, 0.0, -m3 * p.g0, 0.0])
+    return B, Cqd, F * qd, g
 
 
 @given(state=_state, omega=st.floats(5.0, 200.0), zeta=st.floats(0.5, 2.0), m_L=st.floats(0.0, 10.0))
@@ -67,9 +92,14 @@ def test_computed_torque_law_matches_numpy(state, omega, zeta, m_L):
     model = P0.with_payload(m_L)
     c = ComputedTorqueController(omega=omega, zeta=zeta, model=model, tau_max=[1e9] * 4)
     ref = np.concatenate([q + e, qd + ed, qdd_d])
+    e, ed = ref[:4] - q, ref[4:8] - qd   # the errors the law sees (q + e - q is e to a rounding)
     code, tau, sig = _step(c, q, qd, ref)
     y = qdd_d + 2 * zeta * omega * ed + omega ** 2 * e
-    want = inertia(q, model) @ y + coriolis(q, qd, model) @ qd + friction(model) @ qd + gravity(q, model)
+    B, Cqd, Fqd, g = _model_by_hand(q, qd, model)
+    want = B @ y + Cqd + Fqd + g
+    # the package's public model gives the same (its own checks are chapter 5's)
+    np.testing.assert_allclose(inertia(q, model) @ y + coriolis(q, qd, model) @ qd + friction(model) @ qd
+                               + gravity(q, model), want, rtol=1e-12, atol=1e-11 * np.abs(want).max())
     assert code == 0
     np.testing.assert_allclose(sig, y, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(tau, want, rtol=1e-12, atol=1e-11 * np.abs(want).max())
