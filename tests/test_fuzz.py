@@ -117,7 +117,7 @@ class F:
         return tuple(fz.label(c, f"<{type(c).__name__}()>") for c in (
             S.PDGravityController(), S.TorqueController(), C.RobustController(), C.AdaptiveController(),
             C.OperationalSpaceController(), C.OperationalSpaceController(integral=False),
-            C.IndependentJointController()))
+            C.IndependentJointController(), C.PDPlusGravityController(), C.ComputedTorqueController()))
 
     @staticmethod
     @functools.lru_cache(maxsize=None)
@@ -398,6 +398,21 @@ TABLE = [
         bool_arg("integral"), gain("omega", lo=5, hi=60, optional=True), gain("B_bar", lo=0.5, hi=30, optional=True),
         bool_arg("feedforward"), bool_arg("saturation"), bool_arg("anti_windup"), F.params_arg("model"),
         gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "PDPlusGravityController", lambda: [
+        gain("omega", lo=5, hi=60, optional=True), gain("B_bar", lo=0.5, hi=30, optional=True),
+        gain("K_P", lo=100, hi=30000, optional=True), gain("K_D", lo=10, hi=2000, optional=True), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "ComputedTorqueController", lambda: [
+        gain("omega", lo=5, hi=300, optional=True), gain("zeta", lo=0.5, hi=2, optional=True),
+        gain("K_P", lo=100, hi=2000, optional=True), gain("K_D", lo=40, hi=100, optional=True),
+        scalar("dt", 1e-4, 1e-3, True), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "ComputedTorqueController.steady_state_error", lambda: [F.params_arg("plant", optional=False), q_arg(optional=True)],
+          target=lambda: _mod("control").ComputedTorqueController().steady_state_error),
+    Entry("control", "PDPlusGravityController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
+          target=lambda: F.controllers()[7].run, scenario=lambda: _simulate_scenarios(7)),
+    Entry("control", "ComputedTorqueController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
+          target=lambda: F.controllers()[8].run, scenario=lambda: _simulate_scenarios(8)),
     Entry("control", "IndependentJointController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
           target=lambda: F.controllers()[6].run, scenario=lambda: _simulate_scenarios(6)),
     Entry("control", "independent_gains", lambda: [gain("B_bar", lo=0.5, hi=30, optional=True),
@@ -659,6 +674,7 @@ NOT_FUZZED = {
     "friction_kernel", "inverse_dynamics_kernel", "bias_kernel", "forward_dynamics_kernel", "regressor_kernel",
     "pi_kernel", "lumped_parameters", "inertia_parts", "kinetic_energy_kernel", "potential_energy_kernel",
     "cholesky_solve4", "closed_loop_kernel", "tool_motion_kernel", "reach_kernel",
+    "critical_gains", "sampling_limit", "computed_torque_steady_state",
     # the decorator that compiles a user's control law (takes a Python function, not numbers)
     "control_law",
     # the chapter-6 name of scara.gains.gain_vector (the same function, fuzzed under that name)
