@@ -1,0 +1,148 @@
+"""Steady states of the interaction laws on an elastic surface, and the figures of a contact transition
+(chapter 7; Siciliano et al., ch. 9), to check against :func:`~.engine.simulate_contact`.
+
+The surface is the elastic environment of the textbook, ``h_e = K (x_e - x_r)`` with ``K = diag(0, 0, k_e, 0)``
+(only z is constrained) and ``x_r`` any point of the undeformed surface (``z_r = height``), valid while the tool
+presses (``x_e,z < height``; it never pulls). At rest the surface's damper and the regularised friction give no
+force, so these are exact equilibria of the simulated plant.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ScaraError, as_array, check_positive
+from .environment import ForceSensor, Surface
+
+__all__ = ["elastic_equilibrium", "force_equilibrium", "parallel_equilibrium", "contact_transition",
+           "approach_reference"]
+
+
+def _surface(surface):
+    s = Surface() if surface is None else surface
+    if not isinstance(s, Surface):
+        raise ScaraError(f"surface must be a Surface or None, got {type(s).__name__}")
+    return s
+
+
+def _bias(sensor) -> np.ndarray:
+    if sensor is None:
+        return np.zeros(3)
+    if not isinstance(sensor, ForceSensor):
+        raise ScaraError(f"sensor must be a ForceSensor or None, got {type(sensor).__name__}")
+    return np.asarray(sensor.bias, dtype=float)
+
+
+def elastic_equilibrium(K_P, x_d, surface: Surface | None = None) -> tuple:
+    """The rest pose ``x`` (4,) and force ``h_e`` (3,) N of a law that shows the stiffness ``K_P`` (4,) (N/m, N m/rad)
+    about ``x_d`` (4,) to the elastic surface: compliance control (Siciliano et al., sec. 9.2.2),
+    impedance control and admittance control (sec. 9.3, with their ``K_P``, ``K_Pd``) with an ideal sensor.
+
+    ``x = (K_P + K)^-1 (K_P x_d + K x_r)`` and ``h_e = K (x - x_r) = K (K_P + K)^-1 K_P (x_d - x_r)``: the force is
+    the surface's stiffness times the penetration the law settles at. When ``x_d`` is not below the surface the
+    tool rests at ``x_d`` without contact (``h_e = 0``).
+
+    >>> x, h = elastic_equilibrium([5000.0] * 4, [0.4, 0.1, 0.2975, 0.0])
+    >>> round(float(x[2]), 6), round(float(h[2]), 6)
+    (0.2995, -10.0)
+    """
+    K_P = as_array(K_P, "K_P", (4,))
+    if np.any(K_P <= 0):
+        raise ScaraError(f"K_P = {K_P.tolist()} must be positive (every entry > 0)")
+    x_d = as_array(x_d, "x_d", (4,))
+    s = _surface(surface)
+    if not x_d[2] < s.height:
+        return x_d.copy(), np.zeros(3)
+    K = np.diag([0.0, 0.0, s.stiffness, 0.0])
+    x_r = np.array([x_d[0], x_d[1], s.height, x_d[3]])
+    x = np.linalg.solve(np.diag(K_P) + K, np.diag(K_P) @ x_d + K @ x_r)
+    return x, (K @ (x - x_r))[:3]
+
+
+def force_equilibrium(f_d, surface: Surface | None = None, sensor: ForceSensor | None = None) -> tuple:
+    """The rest height ``z`` (m) and force ``h_e`` (3,) N of force control with integral action (Siciliano et al.,
+    sec. 9.4.1-9.4.2) or of parallel control (sec. 9.4.3) asked for ``f_d`` (3,) N (a number: its z entry) along
+    the surface's normal: the integral makes the *measured* force ``f_d``, so the true ``h_z = f_d,z - b_z``
+    (``b`` the sensor's bias: the force error ``f_d - h_e`` is exactly the bias), and the elastic surface sets
+    ``z = height + h_z / k_e``. ``f_d,z`` must press (``f_d,z - b_z < 0``); the tangential entries of ``f_d`` must
+    be 0 (a surface without friction at rest bears no tangential force).
+
+    >>> z, h = force_equilibrium(-10.0, sensor=ForceSensor())
+    >>> round(z, 8), h.tolist()
+    (0.299525, [0.0, 0.0, -9.5])
+    """
+    f = np.array([0.0, 0.0, float(as_array([f_d], "f_d", (1,))[0])]) if np.ndim(f_d) == 0 else \
+        np.array(as_array(f_d, "f_d", (3,)), dtype=float)
+    if np.any(f[:2] != 0):
+        raise ScaraError(f"f_d = {f.tolist()} N: its x and y entries must be 0 (the surface bears no tangential "
+                         f"force at rest)")
+    s = _surface(surface)
+    h = f - _bias(sensor)
+    h[:2] = 0.0
+    if not h[2] < 0:
+        raise ScaraError(f"f_d,z - bias_z = {h[2]:g} N must be < 0: the surface only pushes, the tool must press "
+                         f"down")
+    return s.height + h[2] / s.stiffness, h
+
+
+def parallel_equilibrium(x_d, f_d, surface: Surface | None = None, sensor: ForceSensor | None = None) -> tuple:
+    """The rest pose ``x`` (4,) and force ``h_e`` (3,) of parallel force/position control (Siciliano et al.,
+    sec. 9.4.3): ``x = (x_d, y_d, z, phi_d)`` with ``z`` and ``h_e`` of :func:`force_equilibrium`: the force loop
+    prevails along the constrained z, the position loop along the free directions.
+
+    >>> x, h = parallel_equilibrium([0.4, 0.1, 0.3, 0.0], -10.0)
+    >>> x.round(6).tolist(), h.tolist()
+    ([0.4, 0.1, 0.2995, 0.0], [0.0, 0.0, -10.0])
+    """
+    x = np.array(as_array(x_d, "x_d", (4,)), dtype=float)
+    x[2], h = force_equilibrium(f_d, surface, sensor)
+    return x, h
+
+
+def contact_transition(result) -> dict:
+    """The figures of a run from free space onto the surface (a :class:`~.engine.ContactResult`): ``first_touch``
+    (s, NaN without contact), ``peak_force`` (N, the largest normal force ``-h_z``), ``contact_losses`` (how
+    many times the contact was lost after the first touch), ``bounced`` (any loss), ``final_force`` (N, the
+    normal force at the last sample)."""
+    force = getattr(result, "force", None)
+    if force is None:
+        raise ScaraError(f"contact_transition needs a run of simulate_contact, got {type(result).__name__}")
+    touching = np.asarray(result.in_contact)
+    fn = -np.asarray(force)[:, 2]
+    if not touching.any():
+        return {"first_touch": float("nan"), "peak_force": 0.0, "contact_losses": 0, "bounced": False,
+                "final_force": float(fn[-1])}
+    k0 = int(np.argmax(touching))
+    after = touching[k0:]
+    losses = int(np.count_nonzero(after[:-1] & ~after[1:]))
+    return {"first_touch": float(result.t[k0]), "peak_force": float(fn.max()), "contact_losses": losses,
+            "bounced": losses > 0, "final_force": float(fn[-1])}
+
+
+class _Reference:
+    """An operational reference (``t``, ``x``, ``xd``, ``xdd``, ``dt``) as :func:`scara.simulate` reads it."""
+
+    def __init__(self, t, x, xd, xdd, dt):
+        self.t, self.x, self.xd, self.xdd, self.dt = t, x, xd, xdd, dt
+
+
+def approach_reference(start, target, move: float = 1.0, hold: float = 2.0, dt: float = 1e-3):
+    """A rest-to-rest operational reference from ``start`` to ``target`` (4,) in ``move`` s (a quintic,
+    :func:`scara.trajectory.quintic`), then ``hold`` s at ``target``: the approach of a transition run.
+
+    >>> r = approach_reference([0.4, 0.1, 0.32, 0.0], [0.4, 0.1, 0.29, 0.0], 0.5, 0.5)
+    >>> r.x.shape, float(r.x[-1, 2])
+    ((1001, 4), 0.29)
+    """
+    from ..trajectory import quintic  # noqa: PLC0415
+
+    move = check_positive(move, "move")
+    hold = check_positive(hold, "hold", strict=False)
+    jt = quintic(as_array(start, "start", (4,)), as_array(target, "target", (4,)), move, dt=dt, check=False)
+    n_hold = int(round(hold / dt))
+    if abs(n_hold * dt - hold) > 1e-9 * max(1.0, hold):
+        raise ScaraError(f"hold = {hold:g} s is not a whole number of samples of dt = {dt:g} s")
+    rest = np.repeat(jt.q[-1:], n_hold, axis=0)
+    x = np.vstack([jt.q, rest])
+    xd = np.vstack([jt.qd, np.zeros_like(rest)])
+    xdd = np.vstack([jt.qdd, np.zeros_like(rest)])
+    return _Reference(np.arange(len(x)) * dt, x, xd, xdd, dt)
