@@ -14,7 +14,8 @@ effector exerts on the environment, eq. 9.1), which the engine writes in the law
   Euler at ``dt``), and an inner inverse dynamics loop, with the measured force compensated, tracks it:
   ``y = J_A^-1 (xdd_c + K_D (xd_c - v) + K_P (x_c - x_e) - Jdot_A qd)``, ``u = B_hat y + n_hat + J^T h``.
 * :class:`ForceController` (sec. 9.4.1-9.4.2): force control with an inner position loop,
-  ``y = J_A^-1 (K_P (x_F - x_e) - K_D v - Jdot_A qd)``, ``u = B_hat y + n_hat``, the position reference made by a
+  ``y = J_A^-1 (K_P (x_F - x_e) - K_D v - Jdot_A qd)``, ``u = B_hat y + n_hat + J^T h`` (the measured force
+  compensated, so that the inner loop is ``xdd_e + K_D xd_e + K_P x_e = K_P x_F``), the position reference made by a
   PI on the force error, ``x_F = x_F0 + K_F (f_d - h) + K_I int (f_d - h) dt`` on (x, y, z) (``x_F0`` the start
   position; phi keeps ``phi_d``): at rest ``h = f_d`` exactly.
 * :class:`ParallelController` (sec. 9.4.3): parallel force/position control, the same inner loop on
@@ -91,10 +92,11 @@ def within(e, emax):
 
 
 @kernel
-def inverse_dynamics_step(q, qd, J, a, y, h, compensate, model, work, tau, gains, tmax_at):
-    """``u = B_hat y + n_hat (+ J^T h)``, ``y = J_A^-1 a`` solved by the block structure of (1.6) (the planar 2x2
+def inverse_dynamics_step(q, qd, J, a, y, h, model, work, tau, gains, tmax_at):
+    """``u = B_hat y + n_hat + J^T h``, ``y = J_A^-1 a`` solved by the block structure of (1.6) (the planar 2x2
     block, then ``y3 = -a_z``, ``y4 = a_phi - y1 - y2``); ``B_hat`` goes into the first four rows of ``work``
-    (:func:`~scara.dynamics.inverse_dynamics_kernel`). ``compensate``: add ``J^T h`` (J the positional rows).
+    (:func:`~scara.dynamics.inverse_dynamics_kernel`); ``J^T h`` compensates the measured force (J the positional
+    rows of ``J_A``).
     Returns :data:`SINGULAR_JACOBIAN` or the torque check's code."""
     det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
     if not abs(det) > 1e-12 * model[DP_A1] * model[DP_A2]:
@@ -104,9 +106,8 @@ def inverse_dynamics_step(q, qd, J, a, y, h, compensate, model, work, tau, gains
     y[2] = -a[2]
     y[3] = a[3] - y[0] - y[1]
     inverse_dynamics_kernel(q, qd, y, model, work, tau)
-    if compensate:
-        for i in range(4):
-            tau[i] += J[0, i] * h[0] + J[1, i] * h[1] + J[2, i] * h[2]
+    for i in range(4):
+        tau[i] += J[0, i] * h[0] + J[1, i] * h[1] + J[2, i] * h[2]
     return torque_code(tau, gains, tmax_at)
 
 
@@ -170,7 +171,7 @@ def impedance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
         hi = h[i] if i < 3 else 0.0
         a[i] = (ref[REF_ACC + i] + (gains[_I_KD + i] * (ref[REF_VEL + i] - v[i]) + gains[_I_KP + i] * xt[i] - hi)
                 / gains[_I_MD + i] - jdq[i])
-    return inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, True, model, work, tau, gains, _I_TMAX)
+    return inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _I_TMAX)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -213,7 +214,7 @@ def admittance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
         a[i] = ac[i] + gains[_A_KD + i] * (vc - v[i]) + gains[_A_KP + i] * xt[i] - jdq[i]
     if not within(xt, gains[_A_EMAX]):
         return ERROR_BOUND
-    code = inverse_dynamics_step(q, qd, J, a, jdq, h, True, model, work, tau, gains, _A_TMAX)
+    code = inverse_dynamics_step(q, qd, J, a, jdq, h, model, work, tau, gains, _A_TMAX)
     for i in range(4):
         state[_AS_V + i] += dt * ac[i]
         state[_AS_X + i] += dt * state[_AS_V + i]
@@ -256,7 +257,7 @@ def force_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     a[3] = ref[REF_ACC + 3] + gains[_F_KP + 3] * xt[3] + gains[_F_KD + 3] * (ref[REF_VEL + 3] - v[3]) - jdq[3]
     if not within(xt, gains[_F_EMAX]):
         return ERROR_BOUND
-    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, False, model, work, tau, gains, _F_TMAX)
+    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _F_TMAX)
     for i in range(3):
         state[_FS_S + i] += dt * (gains[_F_FD + i] - h[i])
     return code
@@ -289,7 +290,7 @@ def parallel_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], jdq)
     for i in range(4):
         a[i] = ref[REF_ACC + i] + gains[_P_KD + i] * (ref[REF_VEL + i] - v[i]) + gains[_P_KP + i] * xt[i] - jdq[i]
-    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, False, model, work, tau, gains, _P_TMAX)
+    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _P_TMAX)
     state[_PS_S] += dt * (gains[_P_FD] - h[2])
     return code
 
@@ -366,6 +367,11 @@ class ComplianceController(_InteractionController):
         """The stiffness (4,) the tool shows the environment at rest: ``K_P``."""
         return self.K_P.copy()
 
+    def bias_gain(self):
+        """None: the law reads no sensor, so the sensor's bias does not move its rest (see
+        :func:`~.steady.law_equilibrium`)."""
+        return None
+
     def z_loops(self, m, c, k, d, dt):
         loop = (np.array([-self.K_P[2], -self.K_D[2]]),) + _NONE
         return {"contact": loop, "free": loop}
@@ -410,6 +416,11 @@ class ImpedanceController(_InteractionController):
     def stiffness(self) -> np.ndarray:
         """The stiffness (4,) the tool shows the environment at rest: ``K_P``."""
         return self.K_P.copy()
+
+    def bias_gain(self) -> np.ndarray:
+        """``G = M_d`` (4,): at rest ``K_P x~ = h_A + b_A - G J_A B^-1 J^T b`` with the sensor's bias ``b``
+        (:func:`~.steady.law_equilibrium`)."""
+        return self.M_d.copy()
 
     def z_loops(self, m, c, k, d, dt):
         r = m / self.M_d[2]
@@ -468,6 +479,11 @@ class AdmittanceController(_InteractionController):
         """The stiffness (4,) the tool shows the environment at rest: the compliant frame's ``K_Pd``."""
         return self.K_Pd.copy()
 
+    def bias_gain(self) -> np.ndarray:
+        """``G = K_Pd / K_P`` (4,): at rest ``K_Pd x~ = h_A + b_A - G J_A B^-1 J^T b`` with the sensor's bias ``b``
+        (the inner loop lags the compliant frame by ``K_P^-1 J_A B^-1 J^T b``; :func:`~.steady.law_equilibrium`)."""
+        return self.K_Pd / self.K_P
+
     def z_loops(self, m, c, k, d, dt):
         Md, Kd, Kp = self.M_d[2], self.K_Dd[2], self.K_Pd[2]
         KP, KD = self.K_P[2], self.K_D[2]
@@ -485,9 +501,10 @@ class AdmittanceController(_InteractionController):
 
 
 def _force_loops(m, c, k, d, dt, KP, KD, KF, KI):
-    """The sampled loop along z of the force laws (the integral of the force error as the law's state); in free
-    space only the inner position loop (the integral then ramps the reference on purpose)."""
-    contact = (np.array([m * KP * (-KF * k - 1.0), m * (-KP * KF * d - KD) + c]), np.array([m * KP * KI]),
+    """The sampled loop along z of the force laws (the integral of the force error as the law's state; the
+    measured force compensated, ``+h`` in ``u``); in free space only the inner position loop (the integral then
+    ramps the reference on purpose)."""
+    contact = (np.array([m * KP * (-KF * k - 1.0) + k, m * (-KP * KF * d - KD) + c + d]), np.array([m * KP * KI]),
                np.array([[1.0]]), np.array([[-dt * k, -dt * d]]))
     free = (np.array([-m * KP, -m * KD + c]),) + _NONE
     return {"contact": contact, "free": free}

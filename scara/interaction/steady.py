@@ -13,8 +13,8 @@ import numpy as np
 from ..errors import ScaraError, as_array, check_positive
 from .environment import ForceSensor, Surface
 
-__all__ = ["elastic_equilibrium", "force_equilibrium", "parallel_equilibrium", "contact_transition",
-           "approach_reference"]
+__all__ = ["elastic_equilibrium", "force_equilibrium", "parallel_equilibrium", "law_equilibrium", "sensor_coupling",
+           "contact_transition", "approach_reference"]
 
 
 def _surface(surface):
@@ -32,14 +32,35 @@ def _bias(sensor) -> np.ndarray:
     return np.asarray(sensor.bias, dtype=float)
 
 
-def elastic_equilibrium(K_P, x_d, surface: Surface | None = None) -> tuple:
+def sensor_coupling(bias, q, p=None) -> np.ndarray:
+    """``c = J_A B^-1 J^T b`` (4,) (m/s^2, rad/s^2): the operational acceleration a force ``b`` (3,) N at the tool
+    gives the arm at rest in the configuration ``q`` (``J`` the positional rows of ``J_A``). A law that compensates
+    the measured force ``h + b`` (``u = B y + n + J^T (h + b)``) must hold ``y = -B^-1 J^T b`` at rest: the offset
+    a sensor's bias leaves in its inner loop. Along z it is about ``b_z / B33``; the rotor of motor 3, carried by
+    link 2 (``B13 = B23 != 0``), couples it to x, y and phi.
+
+    >>> c = sensor_coupling([0.0, 0.0, 0.5], [0.0, -np.pi / 2, 0.7, 0.0])
+    >>> round(float(c[2]), 5)
+    0.02222
+    """
+    from ..dynamics import inertia  # noqa: PLC0415
+    from ..kinematics import jacobian  # noqa: PLC0415
+
+    b = as_array(bias, "bias", (3,))
+    J = jacobian(q, p)
+    return J @ np.linalg.solve(inertia(q, p), J[:3].T @ b)
+
+
+def elastic_equilibrium(K_P, x_d, surface: Surface | None = None, offset=None) -> tuple:
     """The rest pose ``x`` (4,) and force ``h_e`` (3,) N of a law that shows the stiffness ``K_P`` (4,) (N/m, N m/rad)
     about ``x_d`` (4,) to the elastic surface: compliance control (Siciliano et al., sec. 9.2.2),
     impedance control and admittance control (sec. 9.3, with their ``K_P``, ``K_Pd``) with an ideal sensor.
 
     ``x = (K_P + K)^-1 (K_P x_d + K x_r)`` and ``h_e = K (x - x_r) = K (K_P + K)^-1 K_P (x_d - x_r)``: the force is
     the surface's stiffness times the penetration the law settles at. When ``x_d`` is not below the surface the
-    tool rests at ``x_d`` without contact (``h_e = 0``).
+    tool rests at ``x_d`` without contact (``h_e = 0``). ``offset`` (4,) N, N m: a constant force ``w`` the law
+    adds at rest, ``K_P x~ = h_A + w`` (a sensor's bias seen through the law, :func:`law_equilibrium`); then
+    ``x = (K_P + K)^-1 (K_P x_d + K x_r - w)``.
 
     >>> x, h = elastic_equilibrium([5000.0] * 4, [0.4, 0.1, 0.2975, 0.0])
     >>> round(float(x[2]), 6), round(float(h[2]), 6)
@@ -54,7 +75,8 @@ def elastic_equilibrium(K_P, x_d, surface: Surface | None = None) -> tuple:
         return x_d.copy(), np.zeros(3)
     K = np.diag([0.0, 0.0, s.stiffness, 0.0])
     x_r = np.array([x_d[0], x_d[1], s.height, x_d[3]])
-    x = np.linalg.solve(np.diag(K_P) + K, np.diag(K_P) @ x_d + K @ x_r)
+    w = np.zeros(4) if offset is None else as_array(offset, "offset", (4,))
+    x = np.linalg.solve(np.diag(K_P) + K, np.diag(K_P) @ x_d + K @ x_r - w)
     return x, (K @ (x - x_r))[:3]
 
 
@@ -95,6 +117,47 @@ def parallel_equilibrium(x_d, f_d, surface: Surface | None = None, sensor: Force
     """
     x = np.array(as_array(x_d, "x_d", (4,)), dtype=float)
     x[2], h = force_equilibrium(f_d, surface, sensor)
+    return x, h
+
+
+def law_equilibrium(controller, x_d, surface: Surface | None = None, sensor: ForceSensor | None = None,
+                    p=None, elbow: int = -1) -> tuple:
+    """The rest pose ``x`` (4,) and force ``h_e`` (3,) of an interaction law held at ``x_d`` (4,) on the elastic
+    surface, the sensor's bias ``b`` included: the one formula per law, checked against the simulation.
+
+    * compliance (no sensor): :func:`elastic_equilibrium` with ``K_P``;
+    * impedance, admittance: :func:`elastic_equilibrium` with their stiffness ``S`` and the offset
+      ``w = b_A - G c``, ``c = J_A B^-1 J^T b`` (:func:`sensor_coupling`) and ``G`` the law's ``bias_gain()``
+      (impedance ``M_d``, admittance ``K_Pd / K_P``); ``w = 0`` for an ideal sensor;
+    * parallel: :func:`parallel_equilibrium`, whose free directions keep ``K_P,i x~_i = -c_i``.
+
+    ``c`` is evaluated at the rest configuration (inverse kinematics of ``x`` with ``elbow``, found by fixed-point
+    iteration). Force control (whose free directions depend on the transient) has :func:`force_equilibrium`.
+    """
+    from ..kinematics import ikine  # noqa: PLC0415
+
+    s = _surface(surface)
+    b = _bias(sensor)
+    name = type(controller).__name__
+    x_d = as_array(x_d, "x_d", (4,))
+    if name == "ParallelController":
+        x, h = parallel_equilibrium(x_d, [0.0, 0.0, controller.f_d], s, sensor)
+        for _ in range(3):
+            c = sensor_coupling(b, ikine(x, p, elbow=elbow), p)
+            x = x_d + c / controller.K_P  # K_P x~ = -c: x = x_d + c / K_P
+            x[2] = parallel_equilibrium(x_d, [0.0, 0.0, controller.f_d], s, sensor)[0][2]
+        return x, h
+    if not hasattr(controller, "bias_gain"):
+        raise ScaraError(f"law_equilibrium takes a compliance, impedance, admittance or parallel controller, got "
+                         f"{name}")
+    G = controller.bias_gain()
+    S = controller.stiffness()
+    x, h = elastic_equilibrium(S, x_d, s)
+    if G is None or not np.any(b):
+        return x, h
+    for _ in range(3):
+        w = np.append(b, 0.0) - G * sensor_coupling(b, ikine(x, p, elbow=elbow), p)
+        x, h = elastic_equilibrium(S, x_d, s, offset=w)
     return x, h
 
 
