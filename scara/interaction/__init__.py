@@ -3,7 +3,7 @@ hole for a peg, a wrist force sensor, the closed loop in contact and the interac
 
     from scara.interaction import ForceController, Surface, simulate_contact
     res = simulate_contact(ForceController(), traj, surface=Surface())
-    res.force[-1]            # h_e (N): about (0, 0, -9.5) with the sensor's 0.5 N bias
+    res.force[-1]            # h_e (N): about (0, 0, -10.5): f_d = (0, 0, -10) less the sensor's 0.5 N bias
 
 Modules: :mod:`.environment` (the surface, the hole, the sensor, the contact force), :mod:`.plant` (the plant in
 contact), :mod:`.engine` (:func:`simulate_contact`), :mod:`.stability` (the sampled loop along z),

@@ -40,7 +40,7 @@ def sampled_radius(loop, m: float, c: float, k: float, d: float, dt: float) -> f
 
     >>> round(sampled_radius((np.array([-1e4, -400.0]), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 2))),
     ...                      20.0, 0.0, 0.0, 0.0, 1e-3), 4)
-    0.99
+    0.9901
     """
     Dy, Cw, Aw, By = (np.asarray(a, dtype=float) for a in loop)
     n = len(Cw)

@@ -40,8 +40,8 @@ def sensor_coupling(bias, q, p=None) -> np.ndarray:
     link 2 (``B13 = B23 != 0``), couples it to x, y and phi.
 
     >>> c = sensor_coupling([0.0, 0.0, 0.5], [0.0, -np.pi / 2, 0.7, 0.0])
-    >>> round(float(c[2]), 5)
-    0.02222
+    >>> round(float(c[2]), 4)
+    0.0222
     """
     from ..dynamics import inertia  # noqa: PLC0415
     from ..kinematics import jacobian  # noqa: PLC0415
@@ -89,8 +89,8 @@ def force_equilibrium(f_d, surface: Surface | None = None, sensor: ForceSensor |
     be 0 (a surface without friction at rest bears no tangential force).
 
     >>> z, h = force_equilibrium(-10.0, sensor=ForceSensor())
-    >>> round(z, 8), h.tolist()
-    (0.299525, [0.0, 0.0, -9.5])
+    >>> round(float(z), 8), h.tolist()      # the sensor reads 0.5 N too much upward: the tool presses 10.5 N
+    (0.299475, [0.0, 0.0, -10.5])
     """
     f = np.array([0.0, 0.0, float(as_array([f_d], "f_d", (1,))[0])]) if np.ndim(f_d) == 0 else \
         np.array(as_array(f_d, "f_d", (3,)), dtype=float)
@@ -103,7 +103,7 @@ def force_equilibrium(f_d, surface: Surface | None = None, sensor: ForceSensor |
     if not h[2] < 0:
         raise ScaraError(f"f_d,z - bias_z = {h[2]:g} N must be < 0: the surface only pushes, the tool must press "
                          f"down")
-    return s.height + h[2] / s.stiffness, h
+    return float(s.height + h[2] / s.stiffness), h
 
 
 def parallel_equilibrium(x_d, f_d, surface: Surface | None = None, sensor: ForceSensor | None = None) -> tuple:
