@@ -43,6 +43,7 @@ from ..control._common import (
     BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code,
 )
 from ..dynamics import DP_A1, DP_A2, DP_D0, gravity_kernel, inverse_dynamics_kernel
+from ..errors import ScaraError, as_array, check_number
 from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..params import ScaraParams
 from .stability import check_sampled, z_axis
@@ -307,10 +308,44 @@ class _InteractionController(BoundedController):
     and the check of the sampled loop along z on a surface (:meth:`check_contact`)."""
 
     reference_kind = "operational"
+    state_layout = ArrayLayout()
+    work_layout = ID_WORK
 
-    def _common(self, model, tau_max, max_error):
+    def _setup(self, gains: dict, model, tau_max, max_error):
+        """Check each gain of ``gains`` (positive, as many entries as its field of ``gains_layout``; a field of one
+        entry is kept as a float) and keep it as an attribute; the model and chapter 6's bounds."""
+        for name, value in gains.items():
+            n = self.gains_layout.sizes[name]
+            g = positive_gains(value, name, n, labels=_AXES[:n] if n > 1 else None)
+            setattr(self, name, float(g[0]) if n == 1 else g)
         self.model = ScaraParams.resolve(model)
         self._set_bounds(tau_max, max_error)
+
+    def _gain_fields(self) -> dict:
+        """The gains by name (every field of ``gains_layout`` but the bounds and the desired force)."""
+        skip = {name for name, _ in BOUND_FIELDS} | {"f_d"}
+        return {name: getattr(self, name) for name in self.gains_layout.names if name not in skip}
+
+    def gains_array(self) -> np.ndarray:
+        extra = {"f_d": self.f_d} if "f_d" in self.gains_layout.names else {}
+        return self.gains_layout.pack(**self._gain_fields(), **extra, **self._bounds())
+
+    def initial_state(self) -> np.ndarray:
+        return self.state_layout.zeros()
+
+    #: the gain that is the stiffness the tool shows the environment at rest (None: the law sets a force)
+    stiffness_field: str | None = None
+
+    def stiffness(self) -> np.ndarray:
+        """The stiffness (4,) (N/m, N m/rad) the tool shows the environment at rest (see ``stiffness_field``)."""
+        if self.stiffness_field is None:
+            raise ScaraError(f"{type(self).__name__} sets a force, not a stiffness")
+        return getattr(self, self.stiffness_field).copy()
+
+    def bias_gain(self):
+        """``G`` (4,) such that at rest ``S x~ = h_A + b_A - G J_A B^-1 J^T b`` with the sensor's bias ``b`` and
+        the stiffness ``S`` (:func:`~.steady.law_equilibrium`); None for a law that reads no sensor."""
+        return None
 
     def z_loops(self, m: float, c: float, k: float, d: float, dt: float) -> dict:
         """The linear part ``(D_y, C_w, A_w, B_y)`` of the law along z (:mod:`.stability`), ``{"contact": ...,
@@ -348,29 +383,12 @@ class ComplianceController(_InteractionController):
     law = staticmethod(compliance_law)
     name = "compliance"
     gains_layout = COMPLIANCE_GAINS
-    state_layout = ArrayLayout()
     work_layout = COMPLIANCE_WORK
+    stiffness_field = "K_P"
 
     def __init__(self, K_P=(5000.0, 5000.0, 5000.0, 200.0), K_D=(600.0, 600.0, 600.0, 25.0),
                  model: ScaraParams | None = None, tau_max=None, max_error=None):
-        self.K_P = positive_gains(K_P, "K_P", labels=_AXES)
-        self.K_D = positive_gains(K_D, "K_D", labels=_AXES)
-        self._common(model, tau_max, max_error)
-
-    def gains_array(self) -> np.ndarray:
-        return COMPLIANCE_GAINS.pack(K_P=self.K_P, K_D=self.K_D, **self._bounds())
-
-    def _gain_fields(self):
-        return {"K_P": self.K_P, "K_D": self.K_D}
-
-    def stiffness(self) -> np.ndarray:
-        """The stiffness (4,) the tool shows the environment at rest: ``K_P``."""
-        return self.K_P.copy()
-
-    def bias_gain(self):
-        """None: the law reads no sensor, so the sensor's bias does not move its rest (see
-        :func:`~.steady.law_equilibrium`)."""
-        return None
+        self._setup({"K_P": K_P, "K_D": K_D}, model, tau_max, max_error)
 
     def z_loops(self, m, c, k, d, dt):
         loop = (np.array([-self.K_P[2], -self.K_D[2]]),) + _NONE
@@ -396,30 +414,15 @@ class ImpedanceController(_InteractionController):
     law = staticmethod(impedance_law)
     name = "impedance"
     gains_layout = IMPEDANCE_GAINS
-    state_layout = ArrayLayout()
-    work_layout = ID_WORK
+    stiffness_field = "K_P"
 
     def __init__(self, M_d=(10.0, 10.0, 10.0, 1.0), K_D=(650.0, 650.0, 650.0, 40.0),
                  K_P=(5000.0, 5000.0, 5000.0, 400.0), model: ScaraParams | None = None, tau_max=None,
                  max_error=None):
-        self.M_d = positive_gains(M_d, "M_d", labels=_AXES)
-        self.K_D = positive_gains(K_D, "K_D", labels=_AXES)
-        self.K_P = positive_gains(K_P, "K_P", labels=_AXES)
-        self._common(model, tau_max, max_error)
-
-    def gains_array(self) -> np.ndarray:
-        return IMPEDANCE_GAINS.pack(M_d=self.M_d, K_D=self.K_D, K_P=self.K_P, **self._bounds())
-
-    def _gain_fields(self):
-        return {"M_d": self.M_d, "K_D": self.K_D, "K_P": self.K_P}
-
-    def stiffness(self) -> np.ndarray:
-        """The stiffness (4,) the tool shows the environment at rest: ``K_P``."""
-        return self.K_P.copy()
+        self._setup({"M_d": M_d, "K_D": K_D, "K_P": K_P}, model, tau_max, max_error)
 
     def bias_gain(self) -> np.ndarray:
-        """``G = M_d`` (4,): at rest ``K_P x~ = h_A + b_A - G J_A B^-1 J^T b`` with the sensor's bias ``b``
-        (:func:`~.steady.law_equilibrium`)."""
+        """``G = M_d`` (4,) (see :meth:`_InteractionController.bias_gain`)."""
         return self.M_d.copy()
 
     def z_loops(self, m, c, k, d, dt):
@@ -451,37 +454,18 @@ class AdmittanceController(_InteractionController):
     law = staticmethod(admittance_law)
     name = "admittance"
     gains_layout = ADMITTANCE_GAINS
+    stiffness_field = "K_Pd"
     state_layout = ADMITTANCE_STATE
-    work_layout = ID_WORK
     signals_layout = ADMITTANCE_SIGNALS
 
     def __init__(self, M_d=(20.0, 20.0, 20.0, 1.0), K_Dd=(940.0, 940.0, 940.0, 40.0),
                  K_Pd=(5000.0, 5000.0, 5000.0, 400.0), K_P=4900.0, K_D=140.0, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
-        self.M_d = positive_gains(M_d, "M_d", labels=_AXES)
-        self.K_Dd = positive_gains(K_Dd, "K_Dd", labels=_AXES)
-        self.K_Pd = positive_gains(K_Pd, "K_Pd", labels=_AXES)
-        self.K_P = positive_gains(K_P, "K_P", labels=_AXES)
-        self.K_D = positive_gains(K_D, "K_D", labels=_AXES)
-        self._common(model, tau_max, max_error)
-
-    def gains_array(self) -> np.ndarray:
-        return ADMITTANCE_GAINS.pack(M_d=self.M_d, K_Dd=self.K_Dd, K_Pd=self.K_Pd, K_P=self.K_P, K_D=self.K_D,
-                                     **self._bounds())
-
-    def initial_state(self) -> np.ndarray:
-        return ADMITTANCE_STATE.zeros()
-
-    def _gain_fields(self):
-        return {"M_d": self.M_d, "K_Dd": self.K_Dd, "K_Pd": self.K_Pd, "K_P": self.K_P, "K_D": self.K_D}
-
-    def stiffness(self) -> np.ndarray:
-        """The stiffness (4,) the tool shows the environment at rest: the compliant frame's ``K_Pd``."""
-        return self.K_Pd.copy()
+        self._setup({"M_d": M_d, "K_Dd": K_Dd, "K_Pd": K_Pd, "K_P": K_P, "K_D": K_D}, model, tau_max, max_error)
 
     def bias_gain(self) -> np.ndarray:
-        """``G = K_Pd / K_P`` (4,): at rest ``K_Pd x~ = h_A + b_A - G J_A B^-1 J^T b`` with the sensor's bias ``b``
-        (the inner loop lags the compliant frame by ``K_P^-1 J_A B^-1 J^T b``; :func:`~.steady.law_equilibrium`)."""
+        """``G = K_Pd / K_P`` (4,): the inner loop lags the compliant frame by ``K_P^-1 J_A B^-1 J^T b`` (see
+        :meth:`_InteractionController.bias_gain`)."""
         return self.K_Pd / self.K_P
 
     def z_loops(self, m, c, k, d, dt):
@@ -532,27 +516,12 @@ class ForceController(_InteractionController):
     name = "force"
     gains_layout = FORCE_GAINS
     state_layout = FORCE_STATE
-    work_layout = ID_WORK
     signals_layout = FORCE_SIGNALS
 
     def __init__(self, f_d=(0.0, 0.0, -10.0), K_P=2500.0, K_D=70.0, K_F=2e-5, K_I=2e-3,
                  model: ScaraParams | None = None, tau_max=None, max_error=None):
         self.f_d = _force_vector(f_d)
-        self.K_P = positive_gains(K_P, "K_P", labels=_AXES)
-        self.K_D = positive_gains(K_D, "K_D", labels=_AXES)
-        self.K_F = positive_gains(K_F, "K_F", 3, labels=_AXES[:3])
-        self.K_I = positive_gains(K_I, "K_I", 3, labels=_AXES[:3])
-        self._common(model, tau_max, max_error)
-
-    def gains_array(self) -> np.ndarray:
-        return FORCE_GAINS.pack(K_P=self.K_P, K_D=self.K_D, K_F=self.K_F, K_I=self.K_I, f_d=self.f_d,
-                                **self._bounds())
-
-    def initial_state(self) -> np.ndarray:
-        return FORCE_STATE.zeros()
-
-    def _gain_fields(self):
-        return {"K_P": self.K_P, "K_D": self.K_D, "K_F": self.K_F, "K_I": self.K_I}
+        self._setup({"K_P": K_P, "K_D": K_D, "K_F": K_F, "K_I": K_I}, model, tau_max, max_error)
 
     def z_loops(self, m, c, k, d, dt):
         return _force_loops(m, c, k, d, dt, self.K_P[2], self.K_D[2], self.K_F[2], self.K_I[2])
@@ -576,27 +545,12 @@ class ParallelController(_InteractionController):
     name = "parallel"
     gains_layout = PARALLEL_GAINS
     state_layout = PARALLEL_STATE
-    work_layout = ID_WORK
     signals_layout = PARALLEL_SIGNALS
 
     def __init__(self, f_d=-10.0, K_P=2500.0, K_D=70.0, K_F=2e-5, K_I=2e-3, model: ScaraParams | None = None,
                  tau_max=None, max_error=None):
         self.f_d = float(_force_vector(f_d)[2])
-        self.K_P = positive_gains(K_P, "K_P", labels=_AXES)
-        self.K_D = positive_gains(K_D, "K_D", labels=_AXES)
-        self.K_F = float(positive_gains(K_F, "K_F", 1)[0])
-        self.K_I = float(positive_gains(K_I, "K_I", 1)[0])
-        self._common(model, tau_max, max_error)
-
-    def gains_array(self) -> np.ndarray:
-        return PARALLEL_GAINS.pack(K_P=self.K_P, K_D=self.K_D, K_F=self.K_F, K_I=self.K_I, f_d=self.f_d,
-                                   **self._bounds())
-
-    def initial_state(self) -> np.ndarray:
-        return PARALLEL_STATE.zeros()
-
-    def _gain_fields(self):
-        return {"K_P": self.K_P, "K_D": self.K_D, "K_F": self.K_F, "K_I": self.K_I}
+        self._setup({"K_P": K_P, "K_D": K_D, "K_F": K_F, "K_I": K_I}, model, tau_max, max_error)
 
     def z_loops(self, m, c, k, d, dt):
         return _force_loops(m, c, k, d, dt, self.K_P[2], self.K_D[2], self.K_F, self.K_I)
@@ -608,8 +562,6 @@ MAX_FORCE = 1e4
 
 def _force_vector(value) -> np.ndarray:
     """``f_d`` as a (3,) vector (a number is its z entry), finite and within :data:`MAX_FORCE` N."""
-    from ..errors import ScaraError, as_array, check_number  # noqa: PLC0415
-
     if np.ndim(value) == 0:
         f = np.array([0.0, 0.0, check_number(value, "f_d", unit="N")])
     else:

@@ -147,7 +147,7 @@ def law_equilibrium(controller, x_d, surface: Surface | None = None, sensor: For
             x = x_d + c / controller.K_P  # K_P x~ = -c: x = x_d + c / K_P
             x[2] = parallel_equilibrium(x_d, [0.0, 0.0, controller.f_d], s, sensor)[0][2]
         return x, h
-    if not hasattr(controller, "bias_gain"):
+    if getattr(controller, "stiffness_field", None) is None:
         raise ScaraError(f"law_equilibrium takes a compliance, impedance, admittance or parallel controller, got "
                          f"{name}")
     G = controller.bias_gain()
