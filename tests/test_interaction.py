@@ -406,3 +406,31 @@ def test_a_surface_the_tool_cannot_reach_is_refused():
         simulate_contact(ComplianceController(), ref, surface=S, q0=[0.0, 1.0])
     with pytest.raises(ScaraError, match="surface must be a Surface"):
         simulate_contact(ComplianceController(), ref, surface="floor")
+
+
+# --------------------------------------------------------------------------------------------------
+# the plain-Python path
+# --------------------------------------------------------------------------------------------------
+def test_plain_python_contact_run_gives_the_same_numbers():
+    """The engine in contact, its laws and kernels run without numba (SCARA_NO_NUMBA=1) and give the compiled
+    run's numbers: parallel control landing 0.5 mm on the surface of a hole, 0.15 s."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    code = ("import json, numpy as np, scara._compile as c; from scara import ikine;"
+            "from scara.interaction import *; assert not c.COMPILED;"
+            "q=ikine([0.4012, 0.1, 0.3005, 0.0], elbow=-1); s=np.array([0.4012, 0.1, 0.3005, q[0]+q[1]]);"
+            "r=simulate_contact(ParallelController(), approach_reference(s, s-[0,0,5e-4,0], 0.1, 0.05),"
+            " surface=Surface(hole=Hole()), substeps=2);"
+            "print(json.dumps(np.r_[r.q.ravel(), r.force.ravel(), r.tau.ravel()].tolist()))")
+    env = dict(os.environ, SCARA_NO_NUMBA="1")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
+    s = _start(0.3005, (0.4012, 0.1))
+    r = simulate_contact(ParallelController(), approach_reference(s, s - [0, 0, 5e-4, 0], 0.1, 0.05),
+                         surface=Surface(hole=Hole()), substeps=2)
+    assert r.in_contact.any()
+    ref = np.r_[r.q.ravel(), r.force.ravel(), r.tau.ravel()]
+    err = _largest.record("plain Python contact run vs compiled", np.abs(np.array(json.loads(out)) - ref).max())
+    assert err < 1e-9  # FMA contraction in compiled code: round-off, amplified by the loops' gains
