@@ -63,8 +63,8 @@ def peg_in_hole(offset=(1e-3, 0.0), surface: Surface | None = None, controller=N
 def insertion_summary(result) -> dict:
     """The figures of a peg-in-hole run: ``landed_on_surface`` (the surface bore the peg before it went in),
     ``entered`` (s, when the peg went into the hole; NaN if never), ``bottom_reached`` (s, the first sample the
-    bottom bears it; NaN if never), ``depth_reached`` (m, below the surface, at the end), ``peak_wall_force`` (N,
-    the largest lateral force while inside), ``final_force`` (3,) N: ``h_e`` at the end."""
+    bottom bears it; NaN if never), ``depth_reached`` (m, below the surface, at the end), ``peak_lateral_force`` (N,
+    the largest horizontal force while inside: the walls', and the bottom's friction when the peg slides on it), ``final_force`` (3,) N: ``h_e`` at the end."""
     s = getattr(result, "surface", None)
     if s is None or s.hole is None:
         raise ScaraError("insertion_summary needs a run of simulate_contact on a Surface with a Hole")
@@ -79,7 +79,7 @@ def insertion_summary(result) -> dict:
         "entered": float(result.t[k_in]) if k_in is not None else float("nan"),
         "bottom_reached": float(result.t[int(np.argmax(on_bottom))]) if on_bottom.any() else float("nan"),
         "depth_reached": float(s.height - z[-1]),
-        "peak_wall_force": float(lateral[inside].max()) if inside.any() else 0.0,
+        "peak_lateral_force": float(lateral[inside].max()) if inside.any() else 0.0,
         "final_force": result.force[-1].copy(),
     }
 
