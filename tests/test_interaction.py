@@ -330,6 +330,26 @@ def test_peg_goes_to_the_bottom(offset, landed):
     assert frames["hole_radius"] == pytest.approx(5e-3 + 5e-4)
 
 
+def test_a_peg_pushed_into_the_wall_loads_it_by_the_commanded_overlap():
+    """Inside the hole, the reference moved 0.7 mm off the axis (0.2 mm past the clearance): parallel control
+    compensates the measured force, so its position loop holds x_d exactly and the wall bears k_w (rho - c) =
+    1e6 * 2e-4 = 200 N, along +x (the tool pushes the wall outward); the bottom still bears f_d."""
+    from scara.interaction.peg import _concatenate
+
+    s = Surface(hole=Hole())
+    c = np.array(s.hole.centre)
+    p0 = _start(0.302, c)
+    down = p0 - [0.0, 0.0, 0.002, 0.0]
+    side = down + [7e-4, 0.0, 0.0, 0.0]
+    ref = _concatenate([approach_reference(p0, down, 0.3, 1.7), approach_reference(down, side, 0.5, 2.5)], 1e-3)
+    r = simulate_contact(ParallelController(), ref, surface=s, sensor=IDEAL)
+    assert r.inside[-1]
+    assert np.abs(r.x[-1, [0, 1, 3]] - side[[0, 1, 3]]).max() < 1e-12
+    want = s.hole.wall_stiffness * (7e-4 - s.hole.clearance)
+    assert r.force[-1, 0] == pytest.approx(want, rel=1e-9)
+    assert r.force[-1, 2] == pytest.approx(-10.0, rel=1e-6)
+
+
 # --------------------------------------------------------------------------------------------------
 # the sampled loop's stability, and bad inputs
 # --------------------------------------------------------------------------------------------------

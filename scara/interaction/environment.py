@@ -21,7 +21,8 @@ The hole (centre ``(c_x, c_y)`` on the surface, radial clearance ``c``, depth ``
     the surface's plane with ``rho <= c`` (a state kept by the engine, updated after every integration step,
     cleared when the end rises above the plane): inside, the walls push it back radially with
     ``f_w = max(0, k_w (rho - c) + d_e rho_dot)`` when ``rho > c``, with wall friction ``-mu f_w tanh(v_z / v_s)``
-    along z, and the bottom at ``z_s - D`` acts as the surface does (same stiffness, damping and friction).
+    along z, and the bottom at ``z_s - D`` acts as the surface does (same stiffness, damping and friction). A run
+    starts with the peg out of the hole (its end above the plane, or off the hole's axis).
 
 The sensor
     reads ``h_e + n + b`` at each sample, ``n`` white Gaussian noise (default std 0.2 N on each component,

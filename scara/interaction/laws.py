@@ -22,6 +22,11 @@ effector exerts on the environment, eq. 9.1), which the engine writes in the law
   ``x~ + x_F``, ``x_F = (0, 0, K_F (f_d - h_z) + K_I int (f_d - h_z) dt, 0)``: at rest ``h_z = f_d`` and
   ``(x, y, phi) = (x_d, y_d, phi_d)``: the force loop prevails along the constrained direction z.
 
+The four laws that read the sensor compensate the measured force (``+ J^T h`` in ``u``): their inner loop is the
+free arm's, so along a position-controlled direction they hold the reference whatever the environment pushes
+back with. A peg held 0.2 mm into a hole's wall loads it with ``k_w`` times that overlap (200 N for the default
+wall), which the actuator bounds ``tau_max`` stop before it grows large.
+
 The inverse dynamics laws' ``K_P``, ``K_D`` are per unit of mass (1/s^2, 1/s: the textbook's ``M_d^-1 K_P``,
 ``M_d^-1 K_D``); the impedance and admittance ``M_d`` (kg), ``K_D`` (N s/m), ``K_P`` (N/m) are physical (the
 phi entries in kg m^2, N m s/rad, N m/rad). ``f_d`` is a desired ``h_e``: its z entry is negative to press down.
