@@ -522,6 +522,14 @@ TABLE = [
     Entry("interaction", "approach_reference", lambda: [
         pose_arg("start"), pose_arg("target"), scalar("move", 0, 0, True, valid=st.sampled_from([0.05, 0.1])),
         scalar("hold", 0, 0, True, valid=st.sampled_from([0.0, 0.05])), contract("dt", 1e-3)]),
+    Entry("interaction", "pressing_target", lambda: [_contact_controller_arg(), pose_arg("start"), _surface_arg(),
+                                                     scalar("force", 1, 50, True)]),
+    Entry("interaction", "approach_run", lambda: [
+        _contact_controller_arg(), _surface_arg(), _sensor_arg(), vector("at", 2, 0.3, 0.5, True),
+        scalar("lift", 1e-3, 5e-3, True), scalar("force", 1, 20, True),
+        scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),
+        scalar("hold", 0, 0, True, valid=st.sampled_from([0.0, 0.05])), small_int("substeps", 1, 3)],
+          examples=EXPENSIVE_EXAMPLES),
     Entry("interaction", "peg_in_hole", lambda: [
         vector("offset", 2, -2e-3, 2e-3, True), scalar("lift", 1e-3, 5e-3, True), _peg_surface_arg(),
         scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),

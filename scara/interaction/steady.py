@@ -12,9 +12,10 @@ import numpy as np
 
 from ..errors import ScaraError, as_array, check_positive
 from .environment import ForceSensor, Surface
+from .laws import ForceController, ParallelController
 
 __all__ = ["elastic_equilibrium", "force_equilibrium", "parallel_equilibrium", "law_equilibrium", "sensor_coupling",
-           "contact_transition", "approach_reference"]
+           "contact_transition", "approach_reference", "pressing_target", "approach_run"]
 
 
 def _surface(surface):
@@ -138,9 +139,8 @@ def law_equilibrium(controller, x_d, surface: Surface | None = None, sensor: For
 
     s = _surface(surface)
     b = _bias(sensor)
-    name = type(controller).__name__
     x_d = as_array(x_d, "x_d", (4,))
-    if name == "ParallelController":
+    if isinstance(controller, ParallelController):
         x, h = parallel_equilibrium(x_d, [0.0, 0.0, controller.f_d], s, sensor)
         for _ in range(3):
             c = sensor_coupling(b, ikine(x, p, elbow=elbow), p)
@@ -149,7 +149,7 @@ def law_equilibrium(controller, x_d, surface: Surface | None = None, sensor: For
         return x, h
     if getattr(controller, "stiffness_field", None) is None:
         raise ScaraError(f"law_equilibrium takes a compliance, impedance, admittance or parallel controller, got "
-                         f"{name}")
+                         f"{type(controller).__name__} (force control's rest is force_equilibrium's)")
     G = controller.bias_gain()
     S = controller.stiffness()
     x, h = elastic_equilibrium(S, x_d, s)
@@ -209,3 +209,44 @@ def approach_reference(start, target, move: float = 1.0, hold: float = 2.0, dt: 
     xd = np.vstack([jt.qd, np.zeros_like(rest)])
     xdd = np.vstack([jt.qdd, np.zeros_like(rest)])
     return _Reference(np.arange(len(x)) * dt, x, xd, xdd, dt)
+
+
+def pressing_target(controller, start, surface: Surface | None = None, force: float = 10.0) -> np.ndarray:
+    """The set point (4,) at which ``controller`` presses the surface with ``force`` N (> 0) below ``start`` (4,):
+    for a law that shows a stiffness ``S_z`` (compliance, impedance, admittance), ``z_d = height - force (S_z +
+    k_e) / (S_z k_e)`` (:func:`elastic_equilibrium` solved for ``z_d``, ideal sensor); for a force law, the
+    surface's height (the force comes from its ``f_d``).
+
+    >>> from scara.interaction import ComplianceController
+    >>> float(pressing_target(ComplianceController(), [0.4, 0.1, 0.32, 0.0])[2])
+    0.2975
+    """
+    s = _surface(surface)
+    force = check_positive(force, "force")
+    target = np.array(as_array(start, "start", (4,)), dtype=float)
+    if getattr(controller, "stiffness_field", None) is None:
+        target[2] = s.height
+    else:
+        kz = float(controller.stiffness()[2])
+        target[2] = s.height - force * (kz + s.stiffness) / (kz * s.stiffness)
+    return target
+
+
+def approach_run(controller, surface: Surface | None = None, sensor: ForceSensor | None = None, *,
+                 at=(0.4, 0.1), lift: float = 0.02, force: float = 10.0, move: float = 1.0, hold: float = 2.0,
+                 substeps: int = 10):
+    """A transition run from free space onto the surface: the tool starts at rest ``lift`` m above the surface at
+    ``at`` (x, y) m (elbow -1, ``theta4 = 0``); the reference moves (a quintic of ``move`` s) to
+    :func:`pressing_target` (a force law keeps its start and lets its force loop lower it) and holds ``hold`` s.
+    Returns the :class:`~.engine.ContactResult` (:func:`contact_transition` gives its figures)."""
+    from ..kinematics import ikine  # noqa: PLC0415
+    from .engine import simulate_contact  # noqa: PLC0415
+
+    s = _surface(surface)
+    xy = as_array(at, "at", (2,))
+    lift = check_positive(lift, "lift")
+    q = ikine([xy[0], xy[1], s.height + lift, 0.0], elbow=-1)
+    start = np.array([xy[0], xy[1], s.height + lift, q[0] + q[1]])
+    target = start if isinstance(controller, ForceController) else pressing_target(controller, start, s, force)
+    return simulate_contact(controller, approach_reference(start, target, move, hold), surface=s, sensor=sensor,
+                            substeps=substeps, elbow=-1)
