@@ -119,9 +119,27 @@ def inverse_dynamics_step(q, qd, J, a, y, h, model, work, tau, gains, tmax_at):
 
 #: The scratch rows of the inverse dynamics laws (``B_hat`` first: the scratch of the inverse dynamics kernel).
 ID_WORK = ArrayLayout(("B_hat", 4), ("J_A", 4), ("Jdot_A", 4), ("xt", 1), ("v", 1), ("a", 1), ("y", 1), ("jdq", 1),
-                      ("measured_force", 1), width=WORK_WIDTH)
-_W_B, _W_J, _W_JD, _W_XT, _W_V, _W_A, _W_Y, _W_JDQ, _W_H = ID_WORK.offsets
+                      ("a_c", 1), ("measured_force", 1), width=WORK_WIDTH)
+_W_B, _W_J, _W_JD, _W_XT, _W_V, _W_A, _W_Y, _W_JDQ, _W_AC, _W_H = ID_WORK.offsets
 assert _W_B == 0, "inverse_dynamics_kernel writes B_hat into the first four rows of work"
+
+
+@kernel
+def id_terms(q, qd, ref, model, work):
+    """The terms every inverse dynamics law starts from, into its scratch rows (:data:`ID_WORK`): ``J_A``,
+    ``x~ = x_d - x_e`` (row ``xt``), ``v = J_A qd`` (row ``v``), ``Jdot_A qd`` (row ``jdq``)."""
+    tracking_terms(q, qd, ref, model, work[_W_J:_W_J + 4], work[_W_XT], work[_W_V])
+    jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], work[_W_JDQ])
+
+
+@kernel
+def id_finish(q, qd, model, work, tau, gains, tmax_at, emax_at):
+    """The end of every inverse dynamics law: :data:`ERROR_BOUND` when the position error in row ``xt`` breaks
+    ``gains[emax_at]``, else ``u`` of :func:`inverse_dynamics_step` for the acceleration in row ``a``."""
+    if not within(work[_W_XT], gains[emax_at]):
+        return ERROR_BOUND
+    return inverse_dynamics_step(q, qd, work[_W_J:_W_J + 4], work[_W_A], work[_W_Y], work[_W_H], model, work, tau,
+                                 gains, tmax_at)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -163,21 +181,13 @@ _I_MD, _I_KD, _I_KP, _I_TMAX, _I_EMAX = IMPEDANCE_GAINS.offsets
 @control_law
 def impedance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Impedance control (module docstring): inverse dynamics with the measured force; the engine's arguments."""
-    J = work[_W_J:_W_J + 4]
-    xt = work[_W_XT]
-    v = work[_W_V]
-    a = work[_W_A]
-    jdq = work[_W_JDQ]
-    h = work[_W_H]
-    tracking_terms(q, qd, ref, model, J, xt, v)
-    if not within(xt, gains[_I_EMAX]):
-        return ERROR_BOUND
-    jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], jdq)
+    id_terms(q, qd, ref, model, work)
     for i in range(4):
-        hi = h[i] if i < 3 else 0.0
-        a[i] = (ref[REF_ACC + i] + (gains[_I_KD + i] * (ref[REF_VEL + i] - v[i]) + gains[_I_KP + i] * xt[i] - hi)
-                / gains[_I_MD + i] - jdq[i])
-    return inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _I_TMAX)
+        hi = work[_W_H, i] if i < 3 else 0.0
+        work[_W_A, i] = (ref[REF_ACC + i] + (gains[_I_KD + i] * (ref[REF_VEL + i] - work[_W_V, i])
+                                             + gains[_I_KP + i] * work[_W_XT, i] - hi) / gains[_I_MD + i]
+                         - work[_W_JDQ, i])
+    return id_finish(q, qd, model, work, tau, gains, _I_TMAX, _I_EMAX)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -195,34 +205,26 @@ ADMITTANCE_SIGNALS = ArrayLayout(("compliant_frame", _AXES))
 def admittance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Admittance control (module docstring): the compliant frame ``x_c`` (state, started at ``x_d(0)``) and the
     inner loop; ``signals`` = ``x_c`` (4,)."""
-    J = work[_W_J:_W_J + 4]
-    xt = work[_W_XT]
-    v = work[_W_V]
-    a = work[_W_A]
-    ac = work[_W_Y]
-    jdq = work[_W_JDQ]
-    h = work[_W_H]
     if not state[_AS_ON] > 0.0:
         for i in range(4):
             state[_AS_X + i] = ref[REF_POS + i]
             state[_AS_V + i] = ref[REF_VEL + i]
         state[_AS_ON] = 1.0
-    tracking_terms(q, qd, ref, model, J, xt, v)
-    jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], jdq)
+    id_terms(q, qd, ref, model, work)
     for i in range(4):
-        hi = h[i] if i < 3 else 0.0
+        hi = work[_W_H, i] if i < 3 else 0.0
         xc = state[_AS_X + i]
         vc = state[_AS_V + i]
         signals[_AG_XC + i] = xc
-        ac[i] = ref[REF_ACC + i] + (gains[_A_KDD + i] * (ref[REF_VEL + i] - vc)
-                                    + gains[_A_KPD + i] * (ref[REF_POS + i] - xc) - hi) / gains[_A_MD + i]
-        xt[i] = xc - (ref[REF_POS + i] - xt[i])  # x_c - x_e
-        a[i] = ac[i] + gains[_A_KD + i] * (vc - v[i]) + gains[_A_KP + i] * xt[i] - jdq[i]
-    if not within(xt, gains[_A_EMAX]):
-        return ERROR_BOUND
-    code = inverse_dynamics_step(q, qd, J, a, jdq, h, model, work, tau, gains, _A_TMAX)
+        ac = ref[REF_ACC + i] + (gains[_A_KDD + i] * (ref[REF_VEL + i] - vc)
+                                 + gains[_A_KPD + i] * (ref[REF_POS + i] - xc) - hi) / gains[_A_MD + i]
+        work[_W_AC, i] = ac
+        work[_W_XT, i] = xc - (ref[REF_POS + i] - work[_W_XT, i])  # x_c - x_e
+        work[_W_A, i] = (ac + gains[_A_KD + i] * (vc - work[_W_V, i]) + gains[_A_KP + i] * work[_W_XT, i]
+                         - work[_W_JDQ, i])
+    code = id_finish(q, qd, model, work, tau, gains, _A_TMAX, _A_EMAX)
     for i in range(4):
-        state[_AS_V + i] += dt * ac[i]
+        state[_AS_V + i] += dt * work[_W_AC, i]
         state[_AS_X + i] += dt * state[_AS_V + i]
     return code
 
@@ -243,29 +245,22 @@ def force_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Force control with an inner position loop and a PI on the force error (module docstring); ``state`` =
     ``x_F0`` (the start position, set at the first sample) and the integral ``s`` of ``f_d - h`` (N s);
     ``signals`` = ``x_F`` (3,) m."""
-    J = work[_W_J:_W_J + 4]
-    xt = work[_W_XT]
-    v = work[_W_V]
-    a = work[_W_A]
-    jdq = work[_W_JDQ]
-    h = work[_W_H]
-    tracking_terms(q, qd, ref, model, J, xt, v)
+    id_terms(q, qd, ref, model, work)
     if not state[_FS_ON] > 0.0:
         for i in range(3):
-            state[_FS_X0 + i] = ref[REF_POS + i] - xt[i]
+            state[_FS_X0 + i] = ref[REF_POS + i] - work[_W_XT, i]
         state[_FS_ON] = 1.0
-    jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], jdq)
     for i in range(3):
-        xf = state[_FS_X0 + i] + gains[_F_KF + i] * (gains[_F_FD + i] - h[i]) + gains[_F_KI + i] * state[_FS_S + i]
+        xf = (state[_FS_X0 + i] + gains[_F_KF + i] * (gains[_F_FD + i] - work[_W_H, i])
+              + gains[_F_KI + i] * state[_FS_S + i])
         signals[_FG_XF + i] = xf
-        xt[i] = xf - (ref[REF_POS + i] - xt[i])  # x_F - x_e
-        a[i] = gains[_F_KP + i] * xt[i] - gains[_F_KD + i] * v[i] - jdq[i]
-    a[3] = ref[REF_ACC + 3] + gains[_F_KP + 3] * xt[3] + gains[_F_KD + 3] * (ref[REF_VEL + 3] - v[3]) - jdq[3]
-    if not within(xt, gains[_F_EMAX]):
-        return ERROR_BOUND
-    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _F_TMAX)
+        work[_W_XT, i] = xf - (ref[REF_POS + i] - work[_W_XT, i])  # x_F - x_e
+        work[_W_A, i] = gains[_F_KP + i] * work[_W_XT, i] - gains[_F_KD + i] * work[_W_V, i] - work[_W_JDQ, i]
+    work[_W_A, 3] = (ref[REF_ACC + 3] + gains[_F_KP + 3] * work[_W_XT, 3]
+                     + gains[_F_KD + 3] * (ref[REF_VEL + 3] - work[_W_V, 3]) - work[_W_JDQ, 3])
+    code = id_finish(q, qd, model, work, tau, gains, _F_TMAX, _F_EMAX)
     for i in range(3):
-        state[_FS_S + i] += dt * (gains[_F_FD + i] - h[i])
+        state[_FS_S + i] += dt * (gains[_F_FD + i] - work[_W_H, i])
     return code
 
 
@@ -281,23 +276,15 @@ PARALLEL_SIGNALS = ArrayLayout(("x_F", 1))
 def parallel_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Parallel force/position control (module docstring); ``state`` = the integral ``s`` of ``f_d - h_z`` (N s),
     ``signals`` = ``x_F`` (m), the force loop's share of the z reference."""
-    J = work[_W_J:_W_J + 4]
-    xt = work[_W_XT]
-    v = work[_W_V]
-    a = work[_W_A]
-    jdq = work[_W_JDQ]
-    h = work[_W_H]
-    tracking_terms(q, qd, ref, model, J, xt, v)
-    xf = gains[_P_KF] * (gains[_P_FD] - h[2]) + gains[_P_KI] * state[_PS_S]
+    id_terms(q, qd, ref, model, work)
+    xf = gains[_P_KF] * (gains[_P_FD] - work[_W_H, 2]) + gains[_P_KI] * state[_PS_S]
     signals[_PG_XF] = xf
-    xt[2] += xf
-    if not within(xt, gains[_P_EMAX]):
-        return ERROR_BOUND
-    jdot_qd(q, qd, model, work[_W_JD:_W_JD + 4], jdq)
+    work[_W_XT, 2] += xf
     for i in range(4):
-        a[i] = ref[REF_ACC + i] + gains[_P_KD + i] * (ref[REF_VEL + i] - v[i]) + gains[_P_KP + i] * xt[i] - jdq[i]
-    code = inverse_dynamics_step(q, qd, J, a, work[_W_Y], h, model, work, tau, gains, _P_TMAX)
-    state[_PS_S] += dt * (gains[_P_FD] - h[2])
+        work[_W_A, i] = (ref[REF_ACC + i] + gains[_P_KD + i] * (ref[REF_VEL + i] - work[_W_V, i])
+                         + gains[_P_KP + i] * work[_W_XT, i] - work[_W_JDQ, i])
+    code = id_finish(q, qd, model, work, tau, gains, _P_TMAX, _P_EMAX)
+    state[_PS_S] += dt * (gains[_P_FD] - work[_W_H, 2])
     return code
 
 
