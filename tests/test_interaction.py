@@ -188,6 +188,25 @@ def test_free_bounce_conserves_energy():
     assert drift160 < drift10 / 10
 
 
+@pytest.mark.parametrize("damped", [False, True])
+def test_energy_balance_of_a_run_in_contact(damped):
+    """ContactResult.energy: kinetic + potential - input work + friction work - the environment's work stays at its
+    start to the quadrature's accuracy on the 1 ms samples. At each touch-down or lift-off the contact power
+    has a kink (its slope jumps by k_e v^2) and, with the damper, a jump (by d_e v^2): Simpson's rule errs there by
+    at most about jump * dt (damper) or slope jump * dt^2 (spring) per event."""
+    plant = ScaraParams() if damped else ScaraParams(F_m=(0.0, 0.0, 0.0, 0.0))
+    s = Surface() if damped else Surface(damping=0.0, friction=0.0)
+    q0 = ikine([0.4, 0.1, 0.31, 0.0], plant, elbow=-1)
+    r = simulate_contact(TorqueController(), duration=0.6, q0=q0, plant=plant, surface=s)
+    e = r.energy()
+    events = 2 * (contact_transition(r)["contact_losses"] + 1)
+    v2 = np.max(r.qd[r.in_contact, 2] ** 2)
+    bound = events * (s.damping * v2 * r.dt + s.stiffness * v2 * r.dt ** 2)
+    err = _largest.record("energy balance in contact / bound", np.abs(e["balance"]).max() / bound)
+    assert err < 1.0
+    assert np.abs(e["contact_work"]).max() > 100 * np.abs(e["balance"]).max()
+
+
 def test_sliding_run_is_resolved_by_ten_substeps():
     """The friction's tanh (v_s = 1 mm/s) and the contact stiffness are resolved at 10 RK4 steps per period: the
     forces of a run pressing and sliding 2 cm differ from a 40-step run by < 1e-4 of the normal force."""

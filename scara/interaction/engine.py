@@ -34,6 +34,7 @@ from .._simulate.result import SimulationResult, _pose_error
 from .._simulate.setpoints import _references, _start_state
 from ..dynamics import DP_A1, DP_A2, DP_D0, dynamic_array
 from ..errors import ScaraError, ShapeError, check_positive
+from ..kinematics import tool_motion_kernel
 from ..params import ScaraParams
 from .environment import NO_ENVIRONMENT, ForceSensor, Surface, contact_force_kernel, inside_after
 from .plant import contact_acceleration, contact_rk4_step, tool_state
@@ -193,6 +194,27 @@ class ContactResult(SimulationResult):
     inside: np.ndarray | None = None
     surface: Surface | None = None
     sensor: ForceSensor | None = None
+
+    def tool_velocity(self) -> np.ndarray:
+        """``J qd`` (N, 3) m/s: the tool's velocity at each sample (:func:`~scara.kinematics.tool_motion_kernel`)."""
+        out = np.empty((len(self.t), 12))
+        tool_motion_kernel(np.ascontiguousarray(self.q), np.ascontiguousarray(self.qd),
+                           np.ascontiguousarray(self.qdd), self.plant.a1, self.plant.a2, self.plant.d0, out)
+        return out[:, 4:7]
+
+    def energy(self) -> dict:
+        """:meth:`SimulationResult.energy` with the environment: ``contact_work`` (J), the work the environment did
+        on the tool, ``int -h_e . v dt`` (cumulative Simpson on the samples, as the friction's), and ``balance`` =
+        ``total - total[0] - input_work + friction_work - contact_work`` (zero up to the integration error and
+        the quadrature's: the contact power has a kink where contact begins or ends)."""
+        from scipy.integrate import cumulative_simpson  # noqa: PLC0415
+
+        out = super().energy()
+        power = -np.einsum("ij,ij->i", self.force, self.tool_velocity())
+        w = cumulative_simpson(power, x=self.t, initial=0.0) if len(self.t) > 2 else np.zeros_like(power)
+        out["contact_work"] = w
+        out["balance"] = out["balance"] - w
+        return out
 
     @property
     def normal_force(self) -> np.ndarray:
