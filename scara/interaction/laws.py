@@ -495,9 +495,10 @@ class ForceController(_InteractionController):
     f_d : (3,) N, the desired ``h_e`` (default ``(0, 0, -10)``: press down with 10 N); a number is the z entry.
     K_P, K_D : (4,) the inner position loop per unit mass (1/s^2, 1/s), default 2500 and 70 (``omega_n = 50``
         rad/s, damping ratio 0.7).
-    K_F, K_I : (3,) m/N and m/(N s), default ``2e-5`` and ``2e-3``: on the book's surface the force loop's gain
-        ``K_F k_e`` is 0.3 of a rigid contact's and the integral settles in about 50 ms; in free space the
-        reference moves toward the surface at ``K_I |f_d|`` (2 cm/s for 10 N).
+    K_F, K_I : (3,) m/N and m/(N s), default ``2e-5`` and ``2e-3``. Pressing on the book's surface (the inner
+        loop holding ``x_e = x_F`` at rest), ``h = k_e (x_F - x_r)`` and the force error decays with the time
+        constant ``(1 + K_F k_e) / (K_I k_e) = 35`` ms, the proportional part ``K_F k_e = 0.4``; in free space
+        the reference moves toward the surface at ``K_I |f_d|`` (2 cm/s for 10 N).
     model, tau_max, max_error : as :class:`ComplianceController` (``max_error`` bounds ``x_F - x_e``).
 
     >>> ForceController().f_d.tolist()
