@@ -36,7 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._compile import ArrayLayout, kernel
-from ..errors import ScaraError, as_array, check_number, check_positive
+from .._simulate.interface import MAX_SAMPLES
+from ..errors import ScaraError, as_array, check_count, check_number, check_positive
 from ..kinematics import jacobian
 from ..params import ScaraParams
 
@@ -248,8 +249,9 @@ class ForceSensor:
 
     def offsets(self, n: int) -> np.ndarray:
         """The sensor's error ``n_k + bias`` (n, 3) N for ``n`` samples (the same for the same seed)."""
+        n = check_count(n, "n", 0, MAX_SAMPLES, "samples", "the longest run the engine accepts")
         rng = np.random.default_rng(int(self.seed))
-        return rng.normal(0.0, self.noise, (int(n), 3)) + np.asarray(self.bias)
+        return rng.normal(0.0, self.noise, (n, 3)) + np.asarray(self.bias)
 
     def readings(self, h_e) -> np.ndarray:
         """The sensor's readings (N, 3) of a series of true forces ``h_e`` (N, 3)."""
