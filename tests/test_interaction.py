@@ -310,6 +310,14 @@ def test_transition_onto_the_surface_does_not_bounce(law):
     assert r.in_contact[-1]
 
 
+def test_summary_carries_the_contact_figures():
+    r = approach_run(ForceController(), S, BIASED, hold=3.0)
+    summary = r.summary(window=0.5)
+    assert summary["bounced"] is False and summary["first_touch"] > 0
+    assert summary["mean_force"][2] == pytest.approx(-10.5, abs=1e-6)  # f_d less the bias, at rest
+    assert summary["peak_force"] == contact_transition(r)["peak_force"]
+
+
 def test_a_lightly_damped_law_bounces():
     """The same approach with compliance damped 10 times less loses contact after the first touch."""
     c = ComplianceController(K_D=(600.0, 600.0, 30.0, 25.0))

@@ -216,6 +216,17 @@ class ContactResult(SimulationResult):
         out["balance"] = out["balance"] - w
         return out
 
+    def summary(self, window: float = 2.0) -> dict:
+        """:meth:`SimulationResult.summary` and the contact's figures: those of
+        :func:`~.steady.contact_transition` (``first_touch``, ``peak_force``, ``contact_losses``, ``bounced``,
+        ``final_force``) and ``mean_force`` (3,) N, the mean ``h_e`` over the last ``window`` s."""
+        from .steady import contact_transition  # noqa: PLC0415
+
+        out = super().summary(window)
+        last = self.t >= self.t[-1] - window + 1e-12
+        out.update(contact_transition(self), mean_force=self.force[last].mean(axis=0))
+        return out
+
     @property
     def normal_force(self) -> np.ndarray:
         """``-h_z`` (N,) N: how hard the tool presses down (0 out of contact)."""
