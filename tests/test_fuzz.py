@@ -575,7 +575,8 @@ def _surface_arg(name="surface"):
 def _peg_surface_arg():
     return Arg("surface", st.just(2).map(lambda i: _contact_objects()[0][i]),
                st.sampled_from(BAD_TYPES + BAD_FLOATS[:3] + ("surface without a hole",)).map(
-                   lambda v: _contact_objects()[0][1] if v == "surface without a hole" else v), True)
+                   lambda v: _contact_objects()[0][1] if isinstance(v, str) and v == "surface without a hole" else v),
+               True)
 
 
 def _sensor_arg():

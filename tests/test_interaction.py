@@ -424,6 +424,8 @@ def test_the_sampled_radius_tells_the_simulation_apart():
     (lambda: contact_force([0.4, 0.1], [0, 0, 0]), "position"),
     (lambda: contact_force([0.4, 0.1, np.nan], [0, 0, 0]), "position"),
     (lambda: wrench_torque(np.zeros(4), [1.0, 2.0]), "force"),
+    (lambda: approach_reference([1.2, 0.0, 0.3, 0.0], [0.4, 0.1, 0.3, 0.0]), "start .* outside the annulus"),
+    (lambda: approach_reference([0.4, 0.1, 0.3, 0.0], [0.4, 0.1, 1.5, 0.0]), "target .* outside the stroke"),
 ])
 def test_bad_inputs_raise_clear_errors(make, match):
     with pytest.raises(ScaraError, match=match):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ScaraError, as_array, check_positive
+from ..errors import ScaraError, as_array, check_angles, check_positive
 from .environment import ForceSensor, Surface
 from .laws import ForceController, ParallelController
 
@@ -188,22 +188,29 @@ class _Reference:
         self.t, self.x, self.xd, self.xdd, self.dt = t, x, xd, xdd, dt
 
 
-def approach_reference(start, target, move: float = 1.0, hold: float = 2.0, dt: float = 1e-3):
+def approach_reference(start, target, move: float = 1.0, hold: float = 2.0, dt: float = 1e-3, p=None):
     """A rest-to-rest operational reference from ``start`` to ``target`` (4,) in ``move`` s (a quintic,
-    :func:`scara.trajectory.quintic`), then ``hold`` s at ``target``: the approach of a transition run.
+    :func:`scara.trajectory.quintic`), then ``hold`` s at ``target``: the approach of a transition run. Both
+    poses must be reachable by the arm ``p`` (:func:`~scara.kinematics.check_reachable`, which raises
+    :class:`~scara.UnreachableError` naming the pose and the limit).
 
     >>> r = approach_reference([0.4, 0.1, 0.32, 0.0], [0.4, 0.1, 0.29, 0.0], 0.5, 0.5)
     >>> r.x.shape, float(r.x[-1, 2])
     ((1001, 4), 0.29)
     """
+    from .._simulate.interface import _sample_count  # noqa: PLC0415
+    from ..kinematics import check_reachable  # noqa: PLC0415
     from ..trajectory import quintic  # noqa: PLC0415
 
-    move = check_positive(move, "move")
+    dt = check_positive(dt, "dt")
+    move = _sample_count(move, dt, "move") * dt
     hold = check_positive(hold, "hold", strict=False)
-    jt = quintic(as_array(start, "start", (4,)), as_array(target, "target", (4,)), move, dt=dt, check=False)
-    n_hold = int(round(hold / dt))
-    if abs(n_hold * dt - hold) > 1e-9 * max(1.0, hold):
-        raise ScaraError(f"hold = {hold:g} s is not a whole number of samples of dt = {dt:g} s")
+    n_hold = _sample_count(hold, dt, "hold") if hold > 0 else 0
+    ends = [as_array(start, "start", (4,)), as_array(target, "target", (4,))]
+    for name, x in zip(("start", "target"), ends):
+        check_reachable(x[:3], p, label=name)
+        check_angles(x, name, columns=(3,))
+    jt = quintic(ends[0], ends[1], move, dt=dt, check=False)
     rest = np.repeat(jt.q[-1:], n_hold, axis=0)
     x = np.vstack([jt.q, rest])
     xd = np.vstack([jt.qd, np.zeros_like(rest)])
