@@ -182,7 +182,8 @@ def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, en
 
 @dataclass
 class ContactResult(SimulationResult):
-    """A run in contact (:func:`simulate_contact`): a :class:`~scara._simulate.SimulationResult` and
+    """A run in contact (:func:`simulate_contact`): a :class:`~scara._simulate.SimulationResult` with the
+    contact force, the sensor's readings and the peg's state at every sample.
 
     ``force`` (N, 3) N: the true ``h_e(t_k)``, the force the end effector exerts on the environment (its z entry
     is negative while the tool presses down); ``measured_force`` (N, 3) N: what the sensor read (what the law

@@ -41,7 +41,7 @@ from ..errors import ScaraError, as_array, check_count, check_number, check_posi
 from ..kinematics import jacobian
 from ..params import ScaraParams
 
-__all__ = ["Surface", "Hole", "ForceSensor", "contact_force", "wrench_torque", "ENVIRONMENT"]
+__all__ = ["Surface", "Hole", "ForceSensor", "contact_force", "wrench_torque"]
 
 #: The flat environment array a compiled loop reads (:meth:`Surface.array`): ``active`` (0: no environment),
 #: the surface (``height`` m, ``stiffness`` N/m, ``damping`` N s/m, ``friction``, ``v_s`` m/s) and the hole
