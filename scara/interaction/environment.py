@@ -10,8 +10,11 @@ The surface (a horizontal plane at ``p_z = z_s``)
     penetration ``delta = z_s - p_z``; normal force on the tool ``f_n = max(0, k_e delta + d_e delta_dot)`` for
     ``delta > 0`` and 0 otherwise (unilateral: it pushes, never pulls; the damper cannot pull either), upwards;
     tangential (friction) force ``-mu f_n tanh(|v_t| / v_s) v_t / |v_t|`` with ``v_t = (v_x, v_y)``: Coulomb's
-    law, its jump at ``v_t = 0`` regularised by ``tanh`` over the speed ``v_s`` (default 1 mm/s; at rest the
-    friction force is 0, so it never holds the tool away from an equilibrium, it only slows the approach).
+    law, its jump at ``v_t = 0`` regularised by ``tanh`` over the speed ``v_s`` (default 1 mm/s). Below ``v_s`` it
+    acts as a viscous damper of ``mu f_n / v_s`` (3000 N s/m at 10 N): the tool cannot stick as with true Coulomb
+    friction (which holds it anywhere its tangential load stays below ``mu f_n``), it creeps to the frictionless
+    equilibrium, with the time constant of that damper against the law's stiffness (0.6 s for compliance control's
+    5000 N/m). The steady states of the laws are therefore those without friction; the transients are not.
 
 The hole (centre ``(c_x, c_y)`` on the surface, radial clearance ``c``, depth ``D``)
     The peg is a rigid cylinder on the tool's axis with a flat end at the tool point; a SCARA's tool axis stays
