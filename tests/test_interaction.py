@@ -17,7 +17,7 @@ from scara.interaction import (AdmittanceController, ComplianceController, Force
                                ImpedanceController, ParallelController, Surface, approach_reference,
                                contact_force, contact_transition, force_equilibrium, insertion_summary,
                                approach_run, law_equilibrium, peg_frames, peg_in_hole, pressing_target,
-                               simulate_contact, wrench_torque)
+                               sensor_coupling, simulate_contact, wrench_torque)
 from scara.interaction.environment import inside_after
 from scara.interaction.plant import contact_acceleration
 from scara.interaction.stability import sampled_radius, z_axis
@@ -131,6 +131,31 @@ def test_plant_acceleration_in_contact_matches_forward_dynamics():
         want = forward_dynamics(q, qd, tau - jacobian(q)[:3].T @ h_e, p)
         err = _largest.record("contact qdd vs forward_dynamics", np.max(np.abs(np.array(qdd) - want)))
         assert err < 1e-9 * (1 + np.max(np.abs(want)))
+
+
+def test_sensor_coupling_is_the_acceleration_a_tool_force_gives_the_arm_at_rest():
+    """c = J_A B^-1 J^T b against the general forward dynamics: at rest with gravity balanced, a force b on the
+    tool accelerates the tool by J_A qdd, qdd = forward_dynamics(q, 0, g(q) + J^T b)."""
+    from scara import gravity
+
+    rng = np.random.default_rng(5)
+    for _ in range(10):
+        q = np.array([rng.uniform(-2, 2), rng.uniform(0.4, 2.7), rng.uniform(0.2, 0.8), rng.uniform(-2, 2)])
+        b = rng.normal(0, 1, 3)
+        qdd = forward_dynamics(q, np.zeros(4), gravity(q) + jacobian(q)[:3].T @ b)
+        want = jacobian(q) @ qdd
+        assert sensor_coupling(b, q) == pytest.approx(want, rel=1e-12, abs=1e-14)
+
+
+def test_contact_transition_counts_by_hand():
+    """A made-up record: free, touching at sample 2, lost at 4, back at 6 and to the end (forces in N)."""
+    from types import SimpleNamespace
+
+    fz = np.array([0.0, 0.0, -3.0, -12.0, 0.0, 0.0, -8.0, -10.0])
+    force = np.column_stack([np.zeros(8), np.zeros(8), fz])
+    r = SimpleNamespace(t=np.arange(8) * 1e-3, force=force, in_contact=fz != 0.0)
+    tr = contact_transition(r)
+    assert tr == {"first_touch": 2e-3, "peak_force": 12.0, "contact_losses": 1, "bounced": True, "final_force": 10.0}
 
 
 # --------------------------------------------------------------------------------------------------
