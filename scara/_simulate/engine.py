@@ -112,6 +112,19 @@ def failure_message(status: int, controller: str, **text) -> str:
 
 
 @_compile.kernel(inline="always")
+def _loop_start(q0, qd0, q, qd, n, info):
+    """The start of a closed loop of ``n`` samples: the state ``q``, ``qd`` (4,) set to ``q0``, ``qd0`` and ``info``
+    to ``[OK, n, 0]`` (a run that ends with it unchanged went through all ``n`` samples); the one start of the
+    engine's loop, of the contact engine's and of the page programs'."""
+    for i in range(4):
+        q[i] = q0[i]
+        qd[i] = qd0[i]
+    info[0] = OK
+    info[1] = n
+    info[2] = 0
+
+
+@_compile.kernel(inline="always")
 def _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig):
     """The start of sample ``k`` of the engine's loop: the measured state recorded in row ``k`` of ``q_out``,
     ``qd_out`` and copied to the law's own ``q_law``, ``qd_law``; ``tau`` and the signals ``sig`` zeroed."""
@@ -217,13 +230,8 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     r = np.empty(n_ref)
     tau = np.empty(4)
     sig = np.empty(n_sig)
-    for i in range(4):
-        q[i] = q0[i]
-        qd[i] = qd0[i]
+    _loop_start(q0, qd0, q, qd, n, info)
     h = dt / substeps
-    info[0] = OK
-    info[1] = n
-    info[2] = 0
     for k in range(n):
         _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         for i in range(n_ref):

@@ -67,6 +67,23 @@ def pack_gains(K_P, K_D, K_I, tau_max, max_error, out):
     out[_G_EMAX] = max_error
 
 
+@kernel
+def jacobian_solve(J, a, scale, y):
+    """``y = J_A^-1 a`` (4,) into ``y`` from the analytic Jacobian ``J`` (4, 4) of (1.6), by its block structure:
+    the planar 2x2 block for ``y1, y2`` (determinant ``-a1 a2 sin theta2``, (1.7)), then ``y3 = -a_z`` and
+    ``y4 = a_phi - y1 - y2``. Returns False (``y`` untouched) when ``|det| <= 1e-12 scale`` (``scale = a1 a2``):
+    the stretched or folded arm. The one solve of the operational-space inverse dynamics laws (chapter 6's and
+    chapter 7's)."""
+    det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+    if not abs(det) > 1e-12 * scale:
+        return False
+    y[0] = (J[1, 1] * a[0] - J[0, 1] * a[1]) / det
+    y[1] = (J[0, 0] * a[1] - J[1, 0] * a[0]) / det
+    y[2] = -a[2]
+    y[3] = a[3] - y[0] - y[1]
+    return True
+
+
 @control_law
 def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """Operational-space inverse dynamics step (module docstring; the twelve arguments are the engine's fixed
@@ -105,14 +122,8 @@ def operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, ta
         ia = gains[_G_KI + i] * state[_X_S + i]
         signals[_S_IA + i] = ia
         a[i] = ref[REF_ACC + i] + gains[_G_KP + i] * xt[i] + gains[_G_KD + i] * (ref[REF_VEL + i] - v) + ia - jdq
-    # y = J_A^-1 a
-    det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
-    if not abs(det) > 1e-12 * a1 * a2:
+    if not jacobian_solve(J, a, a1 * a2, y):  # y = J_A^-1 a
         return SINGULAR_JACOBIAN
-    y[0] = (J[1, 1] * a[0] - J[0, 1] * a[1]) / det
-    y[1] = (J[0, 0] * a[1] - J[1, 0] * a[0]) / det
-    y[2] = -a[2]
-    y[3] = a[3] - y[0] - y[1]
     # u = B_hat y + C_hat qd + F qd + g_hat (B_hat goes into the first four rows of work, the kernel's scratch)
     inverse_dynamics_kernel(q, qd, y, model, work, tau)
     code = torque_code(tau, gains, _G_TMAX)

@@ -25,7 +25,7 @@ from .. import _compile
 from .._simulate.engine import (
     Series, Stepping, _check_run, _first_bad_signal, _owned, _raise_failure, _torque_failure,
 )
-from .._simulate.engine import _before_law
+from .._simulate.engine import _before_law, _loop_start
 from .._simulate.interface import (
     DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
 )
@@ -134,13 +134,8 @@ def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, en
     r = np.empty(ref.shape[1])
     tau = np.empty(4)
     sig = np.empty(sig_out.shape[1])
-    for i in range(4):
-        q[i] = q0[i]
-        qd[i] = qd0[i]
+    _loop_start(q0, qd0, q, qd, n, info)
     h = dt / substeps
-    info[0] = OK
-    info[1] = n
-    info[2] = 0
     for k in range(n):
         _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         _sense(k, q, qd, a1, a2, d0, env, inside_out[k], offsets, force_out, sensed_out, work, force_row)

@@ -50,6 +50,7 @@ from ..control._common import (
 from ..dynamics import DP_A1, DP_A2, DP_D0, gravity_kernel, inverse_dynamics_kernel
 from ..errors import ScaraError, as_array, check_number
 from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
+from ..control.operational import jacobian_solve
 from ..params import ScaraParams
 from .stability import check_sampled, z_axis
 
@@ -104,13 +105,8 @@ def inverse_dynamics_step(q, qd, J, a, y, h, model, work, tau, gains, tmax_at):
     (:func:`~scara.dynamics.inverse_dynamics_kernel`); ``J^T h`` compensates the measured force (J the positional
     rows of ``J_A``).
     Returns :data:`SINGULAR_JACOBIAN` or the torque check's code."""
-    det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
-    if not abs(det) > 1e-12 * model[DP_A1] * model[DP_A2]:
+    if not jacobian_solve(J, a, model[DP_A1] * model[DP_A2], y):
         return SINGULAR_JACOBIAN
-    y[0] = (J[1, 1] * a[0] - J[0, 1] * a[1]) / det
-    y[1] = (J[0, 0] * a[1] - J[1, 0] * a[0]) / det
-    y[2] = -a[2]
-    y[3] = a[3] - y[0] - y[1]
     inverse_dynamics_kernel(q, qd, y, model, work, tau)
     for i in range(4):
         tau[i] += J[0, i] * h[0] + J[1, i] * h[1] + J[2, i] * h[2]

@@ -31,7 +31,8 @@ from .._clik.records import (COMPONENTS, SEED_K, STATUS_DONE, STATUS_ERROR_BOUND
                              Reference, SecondOrderLaw)
 from .._clik.records import Series as ClikSeries
 from .._compile import ArrayLayout, kernel
-from .._simulate.engine import _after_law, _before_law, failure_cause, failure_message, first_bad_signal
+from .._simulate.engine import (_after_law, _before_law, _loop_start, failure_cause, failure_message,
+                                first_bad_signal)
 from .._simulate.interface import (DIVERGED, GUARD, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, READS_PAST,
                                    READS_PAST_ANY, SINGULAR_INERTIA, WRITES_PAST, _FILLS, _TRIAL_ARRAYS, described,
                                    fill_text, guard_change, same_entries)
@@ -452,13 +453,8 @@ def _closed_loop(law, q0, qd0, ref_pos, ref_vel, ref_acc, dt, substeps, limit, d
     r = np.empty(12)
     tau = np.empty(4)
     sig = np.empty(n_sig)
-    for i in range(4):
-        q[i] = q0[i]
-        qd[i] = qd0[i]
+    _loop_start(q0, qd0, q, qd, n, info)
     h = dt / substeps
-    info[0] = OK
-    info[1] = n
-    info[2] = 0
     for k in range(n):
         _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         for i in range(4):

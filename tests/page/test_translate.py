@@ -111,7 +111,10 @@ def test_every_kernel_of_the_package_translates_or_is_named():
             except TranslationError as exc:
                 refused[f"{info.name}.{name}"] = str(exc)
     assert count > 60
-    assert set(refused) <= {"scara._simulate.engine.closed_loop_kernel", "scara.control._common._replay_kernel"}, refused
+    # the loops that take a law as a first-class function (the engine's, the contact engine's, the replay's): the page
+    # programs run their own loops, which pick the law by index
+    assert set(refused) <= {"scara._simulate.engine.closed_loop_kernel", "scara.control._common._replay_kernel",
+                            "scara.interaction.engine.contact_loop_kernel"}, refused
     for text in refused.values():
         assert "first-class function" in text and "line" in text
 
