@@ -367,7 +367,7 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
 
 
 def joint_error_figure(results, predicted: dict | None = None, points: int = 1000, title: str | None = None,
-                       height: int = 760) -> go.Figure:
+                       height: int = 880) -> go.Figure:
     """The joint errors ``q_d - q`` of several runs together, one panel per joint (mrad for the revolute joints, mm
     for the quill), each run in its controller's colour and dash style; ``predicted`` (``{label: (4,) error at
     rest}``, optional) draws each run's predicted steady-state error of the quill as a dotted line in its colour
