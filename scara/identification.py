@@ -39,6 +39,7 @@ from .params import ScaraParams
 __all__ = [
     "ENCODER_COUNTS", "QUILL_RESOLUTION", "NOISE_FRACTION", "PARAM_SPREAD", "PAYLOAD_RANGE", "DRAWN_FIELDS",
     "SPEED_LIMITS", "STROKE_MARGIN", "TORQUE_SHARE", "EXCITATION_OFFSET", "FINE_SAMPLES", "EDGE_PERIODS",
+    "EXAMPLE_SEED", "CUTOFF",
     "encoder_resolution", "quantise", "draw_arm", "FourierExcitation", "stacked_regressor", "regressor_condition",
     "excitation_margins", "optimise_excitation", "ExcitationDesign", "Measurement", "measure", "read_sensors", "torque_noise_std",
     "lowpass", "filtered_data", "FilteredData", "least_squares", "Estimate", "base_parameters", "BaseParameters",
@@ -68,6 +69,11 @@ TORQUE_SHARE = 0.5
 #: Periods of the cut-off dropped at each end of a filtered series (:func:`filtered_data`): there the filter's
 #: start-up transient has not died out (a sine filtered at 5 Hz keeps errors of 2e-5 of its acceleration 1 s in).
 EDGE_PERIODS = 5
+#: The seed of the arm the book identifies (:func:`draw_arm`).
+EXAMPLE_SEED = 7
+#: The default cut-off of the low-pass filter of :func:`filtered_data` (Hz): ten times the highest harmonic
+#: (0.5 Hz) of the book's excitation (:func:`optimise_excitation`), where the filter passes the motion unchanged.
+CUTOFF = 5.0
 #: Samples of one period on which :func:`optimise_excitation` checks its result.
 FINE_SAMPLES = 10_001
 #: The mean configuration of an exciting trajectory: elbow at -90 deg, quill in the middle of its stroke.
@@ -400,6 +406,13 @@ class Measurement:
         """The sampling period (s)."""
         return float(self.t[1] - self.t[0])
 
+    def first(self, n: int) -> "Measurement":
+        """The first ``n`` samples of this record (a shorter experiment with the same sensors and the same noise
+        level ``sigma``), as new arrays; ``run`` is left out."""
+        n = check_count(n, "n", 2, len(self.t), "samples", f"the record holds {len(self.t)}")
+        return Measurement(self.t[:n].copy(), self.q[:n].copy(), self.tau[:n].copy(), self.sigma.copy(),
+                           self.resolution.copy(), None)
+
 
 def torque_noise_std(tau, fraction: float = NOISE_FRACTION) -> np.ndarray:
     """The standard deviation of the torque noise, ``fraction`` of each joint's peak ``|tau_i|`` over the run
@@ -509,7 +522,7 @@ class FilteredData:
     step: int
 
 
-def filtered_data(t, q, tau, cutoff: float, order: int = 4) -> FilteredData:
+def filtered_data(t, q, tau, cutoff: float = CUTOFF, order: int = 4) -> FilteredData:
     """Velocities and accelerations from encoder readings (the book's ``(eq-id-filter)``): ``q`` (N, 4) and
     ``tau`` (N, 4) filtered by the same zero-phase low-pass filter (:func:`lowpass`), so that the regressor
     built from them and the torques stay consistent; ``qd`` and ``qdd`` by central differences of the filtered
@@ -743,7 +756,7 @@ def _coefficient(k: float) -> str:
     return "" if abs(k - 1.0) < 1e-9 else f"{k:.4g} "
 
 
-def identify(measurement: Measurement, cutoff: float, weighted: bool = True, confidence: float = 0.95,
+def identify(measurement: Measurement, cutoff: float = CUTOFF, weighted: bool = True, confidence: float = 0.95,
              p: ScaraParams | None = None) -> tuple:
     """The whole chain: :func:`filtered_data` of the ``measurement`` at ``cutoff`` (Hz), the stacked regressor
     of the filtered motion (:func:`stacked_regressor`, geometry and ``g0`` of ``p``) and :func:`least_squares`.
