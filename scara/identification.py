@@ -25,6 +25,7 @@ Units are SI throughout: rad, m, s, N m (N for joint 3); ``pi`` in :data:`~scara
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -32,8 +33,8 @@ import numpy as np
 
 from ._compile import kernel
 from .dynamics import N_PI, PI_NAMES, dynamic_array, inverse_dynamics, regressor_kernel
-from .errors import (NonFiniteError, ScaraError, ShapeError, UnreachableError, _numbers, as_array, check_count,
-                     check_positive)
+from .errors import (NonFiniteError, ScaraError, ShapeError, UnreachableError, _numbers, as_array, check_angles,
+                     check_count, check_finite_result, check_positive)
 from .params import ScaraParams
 
 __all__ = [
@@ -97,7 +98,7 @@ def encoder_resolution(counts: int = ENCODER_COUNTS, quill: float = QUILL_RESOLU
 
 
 def _resolution(resolution) -> np.ndarray:
-    r = as_array(resolution, "resolution", (4,))
+    r = np.array(as_array(resolution, "resolution", (4,)))
     if np.any(r <= 0):
         i = int(np.argmax(r <= 0))
         raise ScaraError(f"resolution[{i}] = {r[i]:g} must be > 0 (an encoder step, rad or m)")
@@ -114,7 +115,9 @@ def quantise(q, resolution=None) -> np.ndarray:
     """
     q = as_array(q, "q", (4,), allow_batch=True)
     r = encoder_resolution() if resolution is None else _resolution(resolution)
-    return np.round(q / r) * r
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = np.round(q / r) * r
+    return check_finite_result(out, "quantised q", q=q, resolution=1.0 / r)
 
 
 def draw_arm(seed: int, spread: float = PARAM_SPREAD, payload=PAYLOAD_RANGE, base: ScaraParams | None = None
@@ -260,6 +263,9 @@ def _series(q, qd, qdd):
     qdd = as_array(qdd, "qdd", (4,), allow_batch=True)
     if q.ndim != 2 or not (q.shape == qd.shape == qdd.shape):
         raise ShapeError(f"q, qd and qdd must all have shape (N, 4), got {q.shape}, {qd.shape}, {qdd.shape}")
+    if len(q) < 1:
+        raise ShapeError("q, qd and qdd hold no sample: a motion needs at least one (N >= 1)")
+    check_angles(q, "q")
     return (np.ascontiguousarray(a, dtype=float) for a in (q, qd, qdd))
 
 
@@ -276,7 +282,7 @@ def stacked_regressor(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
     q, qd, qdd = _series(q, qd, qdd)
     out = np.empty((4 * len(q), N_PI))
     _stacked_regressor_kernel(q, qd, qdd, dynamic_array(p), out)
-    return out
+    return check_finite_result(out, "Y_bar", qd=qd, qdd=qdd)
 
 
 def regressor_condition(q, qd, qdd, p: ScaraParams | None = None) -> float:
@@ -301,9 +307,11 @@ def excitation_margins(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
     q, qd, qdd = _series(q, qd, qdd)
     p = ScaraParams().with_payload(PAYLOAD_RANGE[1]) if p is None else ScaraParams.resolve(p)
     tau = inverse_dynamics(q, qd, qdd, p)
-    return np.concatenate([q[:, 2] - p.d3_min - STROKE_MARGIN, p.d3_max - STROKE_MARGIN - q[:, 2],
-                           (1.0 - (qd / np.asarray(SPEED_LIMITS)) ** 2).ravel(),
-                           (1.0 - (tau / _torque_limits(p)) ** 2).ravel()])
+    with np.errstate(over="ignore"):
+        out = np.concatenate([q[:, 2] - p.d3_min - STROKE_MARGIN, p.d3_max - STROKE_MARGIN - q[:, 2],
+                              (1.0 - (qd / np.asarray(SPEED_LIMITS)) ** 2).ravel(),
+                              (1.0 - (tau / _torque_limits(p)) ** 2).ravel()])
+    return check_finite_result(out, "excitation margins", qd=qd, tau=tau)
 
 
 @dataclass(frozen=True)
@@ -430,7 +438,8 @@ def read_sensors(run, seed: int, noise: float = NOISE_FRACTION, resolution=None,
     """What the sensors read along a finished ``run`` (a :class:`~scara.SimulationResult`): the joint positions
     quantised to ``resolution`` (default :func:`encoder_resolution`; :func:`quantise`) and the torques with white
     Gaussian noise of standard deviation ``sigma`` (4,) (default ``noise`` times each joint's peak torque on the
-    run, :func:`torque_noise_std`), drawn with ``seed``. Returns a :class:`Measurement` (new arrays)."""
+    run, :func:`torque_noise_std`), drawn with ``seed``. Returns a :class:`Measurement` of new arrays, without
+    the ``run`` (the caller's own object)."""
     from ._simulate.result import SimulationResult  # noqa: PLC0415
 
     if not isinstance(run, SimulationResult):
@@ -442,14 +451,15 @@ def read_sensors(run, seed: int, noise: float = NOISE_FRACTION, resolution=None,
     sigma = torque_noise_std(run.tau, noise) if sigma is None else _positive_vector(sigma, "sigma")
     rng = np.random.default_rng(seed)
     tau = run.tau + rng.standard_normal(run.tau.shape) * sigma
-    return Measurement(run.t.copy(), quantise(run.q, resolution), tau, sigma, resolution, run)
+    return Measurement(run.t.copy(), quantise(run.q, resolution), tau, sigma, resolution)
 
 
 def measure(arm: ScaraParams, reference, seed: int, noise: float = NOISE_FRACTION, resolution=None,
             controller=None, dt: float = 1e-3) -> Measurement:
     """Run the true ``arm`` along the joint ``reference`` (N, 12) ``[q_d, qd_d, qdd_d]`` (e.g.
     :meth:`FourierExcitation.reference`) under ``controller`` (default :class:`~scara.PDGravityController` with
-    the nominal model; any joint-space controller) at ``dt``, and read its sensors (:func:`read_sensors`).
+    the nominal model; any joint-space controller) at ``dt``, and read its sensors (:func:`read_sensors`); the
+    :class:`Measurement` keeps the run as ``run``.
     A reference whose ``d3`` leaves the quill's stroke raises :class:`~scara.UnreachableError`.
     """
     from ._simulate import PDGravityController, simulate  # noqa: PLC0415
@@ -465,7 +475,7 @@ def measure(arm: ScaraParams, reference, seed: int, noise: float = NOISE_FRACTIO
                                f"[{arm.d3_min:g}, {arm.d3_max:g}] m")
     run = simulate(PDGravityController() if controller is None else controller, plant=arm, dt=dt,
                    joint_reference=ref)
-    return read_sensors(run, seed, noise, resolution)
+    return dataclasses.replace(read_sensors(run, seed, noise, resolution), run=run)
 
 
 def _positive_vector(value, name) -> np.ndarray:
@@ -773,4 +783,6 @@ def predicted_torques(q, qd, qdd, pi, p: ScaraParams | None = None) -> np.ndarra
     ``q, qd, qdd`` (N, 4): the model of the book's ``(eq-dyn-regressor)`` with an estimate in place of the
     truth."""
     pi = as_array(pi, "pi", (N_PI,))
-    return (stacked_regressor(q, qd, qdd, p) @ pi).reshape(-1, 4)
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = (stacked_regressor(q, qd, qdd, p) @ pi).reshape(-1, 4)
+    return check_finite_result(out, "Y pi", pi=pi, q=q, qd=qd, qdd=qdd)
