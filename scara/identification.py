@@ -156,14 +156,18 @@ def draw_arm(seed: int, spread: float = PARAM_SPREAD, payload=PAYLOAD_RANGE, bas
 # --------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class FourierExcitation:
-    """A periodic joint motion, a finite Fourier series of ``H`` harmonics per joint (Swevers et al. 1997; the
+    """A periodic joint motion, a finite Fourier series of ``n_h`` harmonics per joint (Swevers et al. 1997; the
     book's ``(eq-id-fourier)``):
 
-        q_i(t) = q_i0 + sum_l [a_il / (l w) sin(l w t) - b_il / (l w) cos(l w t)],   w = 2 pi / period
+        q_i(t) = qbar_i + sum_l [a_il / (l w) sin(l w t) - b_il / (l w) cos(l w t)],   w = 2 pi / period
 
     so ``qd_i = sum_l a_il cos(l w t) + b_il sin(l w t)`` and ``qdd_i = sum_l l w (b_il cos - a_il sin)``.
-    ``a``, ``b`` (4, H) in rad/s (m/s for the quill), ``offset`` (4,) the mean ``q_i0``, ``period`` (s). Build it
-    with :meth:`at_rest`, which makes it start (and, being periodic, end) at rest.
+    ``a``, ``b`` (4, n_h) in rad/s (m/s for the quill), ``offset`` (4,) the mean ``qbar`` (rad, m), ``period``
+    (s). Build it with :meth:`at_rest`, which makes it start (and, being periodic, end) at rest.
+
+    >>> e = FourierExcitation(np.zeros((4, 1)), [[1.0], [0.0], [0.0], [0.0]], [0.0, 0.0, 0.5, 0.0], 2 * np.pi)
+    >>> [round(float(v), 12) for v in e.motion([0.0])[0][0]]      # q_1(0) = -b_11 / w
+    [-1.0, 0.0, 0.5, 0.0]
     """
 
     a: np.ndarray
@@ -183,7 +187,7 @@ class FourierExcitation:
 
     @property
     def harmonics(self) -> int:
-        """The number ``H`` of harmonics per joint."""
+        """The number ``n_h`` of harmonics per joint."""
         return self.a.shape[1]
 
     @property
@@ -194,8 +198,8 @@ class FourierExcitation:
     @classmethod
     def at_rest(cls, free, offset=EXCITATION_OFFSET, period: float = 10.0) -> "FourierExcitation":
         """The series whose first harmonic is chosen so that it starts at rest, ``qd(0) = 0`` and ``qdd(0) = 0``:
-        ``a_i1 = -sum_{l>1} a_il`` and ``b_i1 = -sum_{l>1} l b_il``. ``free`` (4, 2 (H - 1)) holds the other
-        coefficients, ``[a_i2 ... a_iH, b_i2 ... b_iH]`` per joint (a flat vector is reshaped).
+        ``a_i1 = -sum_{l>1} a_il`` and ``b_i1 = -sum_{l>1} l b_il``. ``free`` (4, 2 (n_h - 1)) holds the other
+        coefficients, ``[a_i2 ... a_in_h, b_i2 ... b_in_h]`` per joint (a flat vector is reshaped).
 
         >>> e = FourierExcitation.at_rest(np.ones((4, 4)))
         >>> q, qd, qdd = e.motion([0.0, 10.0])
@@ -286,8 +290,13 @@ def stacked_regressor(q, qd, qdd, p: ScaraParams | None = None) -> np.ndarray:
 
 
 def regressor_condition(q, qd, qdd, p: ScaraParams | None = None) -> float:
-    """The condition number ``sigma_max / sigma_min`` of :func:`stacked_regressor` along a motion (the book's
-    ``(eq-id-cond)``); ``inf`` when ``Y_bar`` is rank deficient."""
+    """The condition number of :func:`stacked_regressor` along a motion ``q, qd, qdd`` (N, 4), its largest
+    singular value over its smallest (the book's ``(eq-id-cond)``); ``inf`` when ``Y_bar`` is rank deficient.
+
+    >>> q = np.tile([0.0, 1.0, 0.5, 0.0], (3, 1))
+    >>> regressor_condition(q, np.zeros((3, 4)), np.zeros((3, 4)))    # at rest only the weight is seen
+    inf
+    """
     s = np.linalg.svd(stacked_regressor(q, qd, qdd, p), compute_uv=False)
     return float(s[0] / s[-1]) if s[-1] > 0 else math.inf
 
