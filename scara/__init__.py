@@ -16,8 +16,8 @@ __version__ = "0.1.0"
 
 #: the modules imported with the package, and those loaded when one of their names is first used
 _EAGER = ("errors", "params", "kinematics", "_manipulability")
-_LAZY = ("trajectory", "_clik", "dynamics", "_simulate", "control")
+_LAZY = ("trajectory", "_clik", "dynamics", "_simulate", "control", "interaction")
 #: sub-modules that are attributes of the package under their own name (``scara.dynamics``)
-_SUBMODULES = ("errors", "params", "kinematics", "trajectory", "dynamics", "control", "identification")
+_SUBMODULES = ("errors", "params", "kinematics", "trajectory", "dynamics", "control", "interaction", "identification")
 
 __all__, __getattr__, __dir__ = _public_names(__name__, _EAGER, _LAZY, _SUBMODULES)

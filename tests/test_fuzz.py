@@ -117,7 +117,7 @@ class F:
         return tuple(fz.label(c, f"<{type(c).__name__}()>") for c in (
             S.PDGravityController(), S.TorqueController(), C.RobustController(), C.AdaptiveController(),
             C.OperationalSpaceController(), C.OperationalSpaceController(integral=False),
-            C.IndependentJointController()))
+            C.IndependentJointController(), C.PDPlusGravityController(), C.ComputedTorqueController()))
 
     @staticmethod
     @functools.lru_cache(maxsize=None)
@@ -398,6 +398,21 @@ TABLE = [
         bool_arg("integral"), gain("omega", lo=5, hi=60, optional=True), gain("B_bar", lo=0.5, hi=30, optional=True),
         bool_arg("feedforward"), bool_arg("saturation"), bool_arg("anti_windup"), F.params_arg("model"),
         gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "PDPlusGravityController", lambda: [
+        gain("omega", lo=5, hi=60, optional=True), gain("B_bar", lo=0.5, hi=30, optional=True),
+        gain("K_P", lo=100, hi=30000, optional=True), gain("K_D", lo=10, hi=2000, optional=True), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "ComputedTorqueController", lambda: [
+        gain("omega", lo=5, hi=300, optional=True), gain("zeta", lo=0.5, hi=2, optional=True),
+        gain("K_P", lo=100, hi=2000, optional=True), gain("K_D", lo=40, hi=100, optional=True),
+        scalar("dt", 1e-4, 1e-3, True), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("control", "ComputedTorqueController.steady_state_error", lambda: [F.params_arg("plant", optional=False), q_arg(optional=True)],
+          target=lambda: _mod("control").ComputedTorqueController().steady_state_error),
+    Entry("control", "PDPlusGravityController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
+          target=lambda: F.controllers()[7].run, scenario=lambda: _simulate_scenarios(7)),
+    Entry("control", "ComputedTorqueController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
+          target=lambda: F.controllers()[8].run, scenario=lambda: _simulate_scenarios(8)),
     Entry("control", "IndependentJointController.run", lambda: _run_args(), examples=EXPENSIVE_EXAMPLES,
           target=lambda: F.controllers()[6].run, scenario=lambda: _simulate_scenarios(6)),
     Entry("control", "independent_gains", lambda: [gain("B_bar", lo=0.5, hi=30, optional=True),
@@ -525,7 +540,126 @@ TABLE = [
         Arg("result", _arrays_of(4, -1, 1), st.sampled_from([np.array([np.nan, 0, 0, 0]), np.full((2, 4), np.inf),
                                                              np.array(-np.inf), np.zeros(0), 1e300 * np.ones(3)])),
         contract("what", "x"), contract("q", np.array([1e300, 0.0, 0.0, 0.0]))]),
+    # ---- interaction -------------------------------------------------------------------------------------
+    Entry("interaction", "Surface", lambda: [
+        scalar("height", 0.1, 0.5, True), scalar("stiffness", 1e3, 1e5, True), scalar("damping", 0, 100, True),
+        scalar("friction", 0, 1, True), scalar("v_s", 1e-4, 1e-2, True), _hole_arg()]),
+    Entry("interaction", "Hole", lambda: [vector("centre", 2, 0.3, 0.5, True), scalar("clearance", 1e-4, 1e-3, True),
+                                          scalar("depth", 0.01, 0.05, True), scalar("wall_stiffness", 1e5, 1e7, True)]),
+    Entry("interaction", "ForceSensor", lambda: [scalar("noise", 0, 1, True), vector("bias", 3, -1, 1, True),
+                                                 integer("seed", 0, 100, True)]),
+    Entry("interaction", "contact_force", lambda: [vector("position", 3, 0.28, 0.42), vector("velocity", 3, -1, 1),
+                                                   _surface_arg(), bool_arg("inside")]),
+    Entry("interaction", "wrench_torque", lambda: [q_arg(), vector("force", 3, -50, 50), _p()]),
+    Entry("interaction", "sensor_coupling", lambda: [vector("bias", 3, -1, 1), q_arg(), _p()]),
+    Entry("interaction", "ComplianceController", lambda: [
+        gain("K_P", lo=100, hi=5000, optional=True), gain("K_D", lo=10, hi=600, optional=True), F.params_arg("model"),
+        gain("tau_max", lo=10, hi=1000, optional=True), scalar("max_error", 0.01, 0.1, True)]),
+    Entry("interaction", "ImpedanceController", lambda: [
+        gain("M_d", lo=1, hi=20, optional=True), gain("K_D", lo=10, hi=600, optional=True),
+        gain("K_P", lo=100, hi=5000, optional=True), F.params_arg("model")]),
+    Entry("interaction", "AdmittanceController", lambda: [
+        gain("M_d", lo=1, hi=20, optional=True), gain("K_Dd", lo=10, hi=900, optional=True),
+        gain("K_Pd", lo=100, hi=5000, optional=True), gain("K_P", lo=100, hi=5000, optional=True),
+        gain("K_D", lo=10, hi=140, optional=True), F.params_arg("model")]),
+    Entry("interaction", "ForceController", lambda: [
+        vector("f_d", 3, -20, 0, True), gain("K_P", lo=100, hi=2500, optional=True),
+        gain("K_D", lo=10, hi=70, optional=True), gain("K_F", 3, lo=1e-6, hi=1e-4, optional=True),
+        gain("K_I", 3, lo=1e-4, hi=1e-2, optional=True), F.params_arg("model")]),
+    Entry("interaction", "ParallelController", lambda: [
+        scalar("f_d", -20, 0, True), gain("K_P", lo=100, hi=2500, optional=True),
+        gain("K_D", lo=10, hi=70, optional=True), scalar("K_F", 1e-6, 1e-4, True), scalar("K_I", 1e-4, 1e-2, True),
+        F.params_arg("model")]),
+    Entry("interaction", "simulate_contact", lambda: [
+        _contact_controller_arg(), F.traj_arg(), F.params_arg("plant"), _surface_arg(), _sensor_arg(),
+        q_arg("q0", optional=True, lo=-1, hi=1), small_int("substeps", 1, 3), elbow_arg()],
+          examples=EXPENSIVE_EXAMPLES),
+    Entry("interaction", "elastic_equilibrium", lambda: [gain("K_P", lo=100, hi=1e4), pose_arg("x_d"), _surface_arg(),
+                                                         vector("offset", 4, -1, 1, True)]),
+    Entry("interaction", "force_equilibrium", lambda: [scalar("f_d", -50, -1), _surface_arg(), _sensor_arg()]),
+    Entry("interaction", "parallel_equilibrium", lambda: [pose_arg("x_d"), scalar("f_d", -50, -1), _surface_arg(),
+                                                          _sensor_arg()]),
+    Entry("interaction", "law_equilibrium", lambda: [_contact_controller_arg(laws=(0, 1, 2, 4)), pose_arg("x_d"),
+                                                     _surface_arg(), _sensor_arg(), _p(), elbow_arg()]),
+    Entry("interaction", "contact_transition", lambda: [_contact_result_arg()],
+          documented_non_finite=("result['first_touch']",)),  # documented: NaN when the tool never touched
+    Entry("interaction", "approach_reference", lambda: [
+        pose_arg("start"), pose_arg("target"), scalar("move", 0, 0, True, valid=st.sampled_from([0.05, 0.1])),
+        scalar("hold", 0, 0, True, valid=st.sampled_from([0.0, 0.05])), contract("dt", 1e-3)]),
+    Entry("interaction", "pressing_target", lambda: [_contact_controller_arg(), pose_arg("start"), _surface_arg(),
+                                                     scalar("force", 1, 50, True)]),
+    Entry("interaction", "approach_run", lambda: [
+        _contact_controller_arg(), _surface_arg(), _sensor_arg(), vector("at", 2, 0.3, 0.5, True),
+        scalar("lift", 1e-3, 5e-3, True), scalar("force", 1, 20, True),
+        scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),
+        scalar("hold", 0, 0, True, valid=st.sampled_from([0.0, 0.05])), small_int("substeps", 1, 3)],
+          examples=EXPENSIVE_EXAMPLES),
+    Entry("interaction", "peg_in_hole", lambda: [
+        vector("offset", 2, -2e-3, 2e-3, True), scalar("lift", 1e-3, 5e-3, True), _peg_surface_arg(),
+        scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),
+        scalar("pause", 0, 0, True, valid=st.sampled_from([0.0, 0.1])),
+        scalar("rest", 0, 0, True, valid=st.sampled_from([0.1])), _sensor_arg(), small_int("substeps", 1, 3)],
+          examples=EXPENSIVE_EXAMPLES),
+    Entry("interaction", "insertion_summary", lambda: [_peg_result_arg()],
+          # documented: NaN when the peg never entered the hole, or never reached the bottom
+          documented_non_finite=("result['entered']", "result['bottom_reached']")),
+    Entry("interaction", "peg_frames", lambda: [_peg_result_arg(), small_int("every", 1, 100),
+                                                scalar("peg_radius", 1e-3, 1e-2, True),
+                                                scalar("peg_length", 1e-2, 0.1, True)]),
 ]
+
+
+# ---- the interaction chapter's shared objects ----------------------------------------------------------
+@functools.lru_cache(maxsize=None)
+def _contact_objects():
+    I = _mod("interaction")
+    surfaces = (None, fz.label(I.Surface(), "Surface()"), fz.label(I.Surface(hole=I.Hole()), "Surface(hole=Hole())"))
+    sensors = (None, fz.label(I.ForceSensor(noise=0.0), "ForceSensor(noise=0)"))
+    laws = tuple(fz.label(c(), f"<{c.__name__}()>") for c in (
+        I.ComplianceController, I.ImpedanceController, I.AdmittanceController, I.ForceController,
+        I.ParallelController))
+    q = scara.ikine([0.4, 0.1, 0.305, 0.0], elbow=-1)
+    start = np.array([0.4, 0.1, 0.305, q[0] + q[1]])
+    ref = I.approach_reference(start, start - [0.0, 0.0, 0.01, 0.0], 0.2, 0.1)
+    run = fz.label(I.simulate_contact(laws[0], ref, surface=surfaces[1]), "<compliance run onto Surface()>")
+    peg = fz.label(I.peg_in_hole(move=0.2, pause=0.0, rest=0.2), "<peg_in_hole, 0.4 s>")
+    return surfaces, sensors, laws, run, peg
+
+
+def _hole_arg():
+    return Arg("hole", st.just(None).map(lambda _: _mod("interaction").Hole()),
+               st.sampled_from(BAD_TYPES[:4] + BAD_FLOATS[:3]), True)
+
+
+def _surface_arg(name="surface"):
+    return Arg(name, st.sampled_from(range(3)).map(lambda i: _contact_objects()[0][i]),
+               st.sampled_from(BAD_TYPES + BAD_FLOATS[:3]), True)
+
+
+def _peg_surface_arg():
+    return Arg("surface", st.just(2).map(lambda i: _contact_objects()[0][i]),
+               st.sampled_from(BAD_TYPES + BAD_FLOATS[:3] + ("surface without a hole",)).map(
+                   lambda v: _contact_objects()[0][1] if isinstance(v, str) and v == "surface without a hole" else v),
+               True)
+
+
+def _sensor_arg():
+    return Arg("sensor", st.sampled_from(range(2)).map(lambda i: _contact_objects()[1][i]),
+               st.sampled_from(BAD_TYPES + BAD_FLOATS[:3]), True)
+
+
+def _contact_controller_arg(name="controller", laws=(0, 1, 2, 3, 4)):
+    return Arg(name, st.sampled_from(laws).map(lambda i: _contact_objects()[2][i]),
+               st.sampled_from(BAD_TYPES + BAD_FLOATS[:3]))
+
+
+def _contact_result_arg():
+    return Arg("result", st.just(3).map(lambda i: _contact_objects()[i]), st.deferred(F.bad_results))
+
+
+def _peg_result_arg():
+    return Arg("result", st.just(4).map(lambda i: _contact_objects()[i]),
+               st.one_of(st.deferred(F.bad_results), st.just(3).map(lambda i: _contact_objects()[i])))
 
 
 def _arrays_of(n, lo, hi):
@@ -734,7 +868,7 @@ NOT_FUZZED = {
     "ScaraError", "ShapeError", "NonFiniteError", "UnreachableError", "UnstableError",
     # result containers: dataclasses/classes the package fills (their fields are checked through the callables
     # that return them); Trajectory is built by plan_path (its constructor takes the planner's private _built)
-    "Ellipsoid", "ClikResult", "TransposeStability", "SimulationResult", "Trajectory",
+    "Ellipsoid", "ClikResult", "TransposeStability", "SimulationResult", "Trajectory", "ContactResult",
     # built by cubic, quintic and joint_trajectory (its constructor takes their solved coefficients)
     "JointTrajectory",
     # named-tuple records of the compiled kernels' constants (built by geometry(), lumped_parameters...)
@@ -747,6 +881,7 @@ NOT_FUZZED = {
     "friction_kernel", "inverse_dynamics_kernel", "bias_kernel", "forward_dynamics_kernel", "regressor_kernel",
     "pi_kernel", "lumped_parameters", "inertia_parts", "kinetic_energy_kernel", "potential_energy_kernel",
     "cholesky_solve4", "closed_loop_kernel", "tool_motion_kernel", "reach_kernel",
+    "critical_gains", "sampling_limit", "computed_torque_steady_state",
     # the decorator that compiles a user's control law (takes a Python function, not numbers)
     "control_law",
     # the chapter-6 name of scara.gains.gain_vector (the same function, fuzzed under that name)

@@ -14,7 +14,7 @@ from ..params import ScaraParams
 from .interface import OK, REF_POS, REF_VEL, WORK_WIDTH, Controller, control_law
 
 __all__ = ["PDGravityController", "TorqueController", "pd_gravity_law", "torque_law", "pd_gravity_steady_state_kernel",
-           "PD_GAINS", "TORQUE_GAINS"]
+           "pd_gravity_torque", "PD_GAINS", "TORQUE_GAINS"]
 
 #: The arrays of the two controllers below (gains, scratch rows, signals; neither keeps a state).
 PD_GAINS = ArrayLayout(("K_P", 4), ("K_D", 4))
@@ -27,16 +27,25 @@ TORQUE_GAINS = ArrayLayout(("tau", 4))
 (_TORQUE,) = TORQUE_GAINS.offsets
 
 
+@kernel
+def pd_gravity_torque(q, qd, ref, gains, kp_at, kd_at, model, g, tau):
+    """The PD plus gravity compensation torque (Siciliano et al. eq. 8.53) into ``tau`` (4,): ``tau = K_P (q_d -
+    q) + K_D (qd_d - qd) + g_hat(q)``, with ``K_P = gains[kp_at:kp_at + 4]``, ``K_D = gains[kd_at:kd_at + 4]``,
+    ``ref = [q_d, qd_d, ...]`` and ``g_hat`` (written into ``g`` (4,)) from the flat parameter array ``model``: the
+    one computation of the law of chapter 5 (:func:`pd_gravity_law`) and of chapter 6's bounded one."""
+    gravity_kernel(q, model, g)
+    for i in range(4):
+        tau[i] = gains[kp_at + i] * (ref[REF_POS + i] - q[i]) + gains[kd_at + i] * (ref[REF_VEL + i] - qd[i]) + g[i]
+
+
 @control_law
 def pd_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
     """PD plus gravity compensation (Siciliano et al. eq. 8.53): ``tau = K_P (q_d - q) + K_D (qd_d - qd) +
-    g_hat(q)``, with ``gains = [K_P(4), K_D(4)]`` and ``g_hat`` from the controller's ``model``.
-    ``signals = [g_hat_3]`` (the compensated quill weight, N). The twelve arguments are the engine's fixed
-    :data:`~scara._compile.LAW_SIGNATURE`, as for every law."""
+    g_hat(q)`` (:func:`pd_gravity_torque`), with ``gains = [K_P(4), K_D(4)]`` and ``g_hat`` from the controller's
+    ``model``. ``signals = [g_hat_3]`` (the compensated quill weight, N). The twelve arguments are the engine's
+    fixed :data:`~scara._compile.LAW_SIGNATURE`, as for every law."""
     g = work[_PD_W_G]
-    gravity_kernel(q, model, g)
-    for i in range(4):
-        tau[i] = gains[_PD_KP + i] * (ref[REF_POS + i] - q[i]) + gains[_PD_KD + i] * (ref[REF_VEL + i] - qd[i]) + g[i]
+    pd_gravity_torque(q, qd, ref, gains, _PD_KP, _PD_KD, model, g, tau)
     signals[_PD_S_G] = g[2]
     return OK
 

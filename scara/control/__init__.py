@@ -1,4 +1,5 @@
-"""Discrete-time controllers of chapter 6 for the arm carrying a payload their models do not know:
+"""Discrete-time controllers of chapter 6 for the arm carrying a payload their models do not know: the two
+classic joint-space laws (PD control with gravity compensation and inverse dynamics, or computed torque, control),
 independent-joint (decentralised) PID control with actuator saturation and anti-windup, robust control and
 Slotine-Li adaptive control in joint space (all three tracking the second-order CLIK's joint reference), and
 inverse dynamics control in the operational space with or without integral action.
@@ -16,6 +17,6 @@ from .._lazy import public_names as _public_names
 
 #: every name of the package is loaded from its sub-module on first use
 _EAGER = ()
-_LAZY = ("_common", "adaptive", "independent", "operational", "robust")
+_LAZY = ("_common", "adaptive", "classic", "independent", "operational", "robust")
 
-__all__, __getattr__, __dir__ = _public_names(__name__, _EAGER, _LAZY, ("adaptive", "independent", "operational", "robust"))
+__all__, __getattr__, __dir__ = _public_names(__name__, _EAGER, _LAZY, ("adaptive", "classic", "independent", "operational", "robust"))

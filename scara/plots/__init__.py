@@ -31,7 +31,7 @@ from .dynamics import (
     torque_share_figure, torque_terms_figure, window_max,
 )
 from .control import (
-    boundary_layer_slider_figure, error_norm_figure, joint_motion_figure, operational_error_figure,
+    boundary_layer_slider_figure, error_norm_figure, joint_error_figure, joint_motion_figure, operational_error_figure,
     figure_slider, payload_estimate_figure, payload_sweep_figure, robust_term_figure, saturation_figure,
     steady_state_figure, torque_figure, tuning_figure,
 )

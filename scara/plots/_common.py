@@ -34,6 +34,8 @@ PALETTE = {
     "pd_gravity": "#999999",
     "independent": "#0072B2",
     "independent_pd": "#CC79A7",
+    "pd_plus_gravity": "#999999",
+    "computed_torque": "#8C510A",
     "velocity": "#0072B2",
     "force": "#D55E00",
     "arm": "#4D4D4D",
@@ -67,11 +69,14 @@ CONTROLLER_LABELS = {
     "pd_gravity": "PD + gravity",
     "independent": "independent joint PID",
     "independent_pd": "independent joint PD",
+    "pd_plus_gravity": "PD + gravity compensation",
+    "computed_torque": "computed torque",
 }
 #: one dash style per controller (colours: ``PALETTE``), so that the curves stay apart in greyscale
 CONTROLLER_DASHES = {"robust": "solid", "adaptive": "dash", "operational": "dot", "operational_noint": "dashdot",
                      "pd_gravity": "longdash", "independent": "longdashdot",
-                     "independent_pd": "8px,3px,2px,3px,2px,3px"}
+                     "independent_pd": "8px,3px,2px,3px,2px,3px", "pd_plus_gravity": "longdash",
+                     "computed_torque": "12px,3px,3px,3px"}
 
 
 def run_name(r) -> str:

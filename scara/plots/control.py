@@ -31,7 +31,7 @@ from ..programs.control import LAWS
 
 __all__ = [
     "CONTROLLER_LABELS", "CONTROLLER_DASHES", "joint_motion_figure", "operational_error_figure",
-    "error_norm_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
+    "error_norm_figure", "joint_error_figure", "torque_figure", "payload_estimate_figure", "robust_term_figure",
     "boundary_layer_slider_figure", "steady_state_figure", "payload_sweep_figure", "saturation_figure",
     "figure_slider", "tuning_figure", "tuning_build", "tuning_values", "tuning_title", "tuning_bindings",
     "TUNING_CONTROLLERS", "TUNING_ROLES", "TUNING_TRACES", "TUNING_PATHS", "TUNING_TITLE", "own_roles",
@@ -366,6 +366,39 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
     return stacked_axes(fig, ("e_z (mm)", "K_I s_z (m/s²)"))
 
 
+def joint_error_figure(results, predicted: dict | None = None, points: int = 1000, title: str | None = None,
+                       height: int = 760) -> go.Figure:
+    """The joint errors ``q_d - q`` of several runs together, one panel per joint (mrad for the revolute joints, mm
+    for the quill), each run in its controller's colour and dash style; ``predicted`` (``{label: (4,) error at
+    rest}``, optional) draws each run's predicted steady-state error of the quill as a dotted line in its colour
+    (e.g. a law's ``steady_state_error(plant)``).
+
+    Limits: ``points`` from 2 to 10 000 samples per curve (``MAX_POINTS``); a value outside, or not a whole number,
+    raises :class:`ScaraError` before any work."""
+    points = check_count(points, "points", 2, MAX_POINTS, "samples per curve", FIGURE_BUDGET)
+    runs = _as_dict(results)
+    predicted = {} if predicted is None else predicted
+    unknown = [k for k in predicted if k not in runs] if isinstance(predicted, dict) else predicted
+    if unknown:
+        raise ScaraError(f"predicted must map labels of the runs {list(runs)} to errors at rest; unknown: {unknown}")
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.05)
+    for label, r in runs.items():
+        idx = thin(len(r.t), points)
+        for j in range(4):
+            fig.add_trace(_line(r.t[idx], 1e3 * (r.q_d[idx, j] - r.q[idx, j]), label if j == 0 else
+                                f"{label} · {JOINT_NAMES[j]}", run_colour(r), width=2, dash=run_dash(r),
+                                showlegend=j == 0, legendgroup=label), row=j + 1, col=1)
+        if label in predicted:
+            e = np.asarray(predicted[label], dtype=float)
+            if e.shape != (4,) or not np.all(np.isfinite(e)):
+                raise ScaraError(f"predicted[{label!r}] must be 4 finite joint errors, got {predicted[label]!r:.80}")
+            fig.add_trace(_line([r.t[0], r.t[-1]], [1e3 * e[2]] * 2, f"predicted at rest · {label}",
+                                run_colour(r), dash="dot", width=1.2, showlegend=False, legendgroup=label),
+                          row=3, col=1)
+    finish_layout(fig, title or "Joint errors<br>(5 kg payload, unknown to the controllers)", height)
+    return stacked_axes(fig, tuple(f"{n}_d − {n} ({'mm' if j == 2 else 'mrad'})" for j, n in enumerate(JOINT_NAMES)))
+
+
 def saturation_figure(runs: dict, joint: int = 2, horizon: float = 1.5, limit: float | None = None,
                       title: str | None = None, height: int = 700) -> go.Figure:
     """Actuator saturation and anti-windup on one joint (default the quill) during the first ``horizon`` seconds
@@ -618,12 +651,14 @@ TUNING_ROLES = tuple(f"error {name}" for name in TUNING_CONTROLLERS) + ("f3", "�
 _SIGNALS = {"estimate": ("m̂_L (kg)", PALETTE["adaptive"], "yaxis4"), "z": ("‖z‖", PALETTE["robust"], "yaxis5"),
             "e_z": ("e_z (mm)", AXIS_COLOURS[2], "yaxis6")}
 #: the controllers whose own figures a note above the signal panel gives, in the order of the annotations
-_NOTED = ("robust", "adaptive", "operational_noint", "independent")
+_NOTED = ("robust", "adaptive", "operational_noint", "independent", "pd_plus_gravity", "computed_torque")
 _NOTES = {
     "robust": Text("ε = {epsilon:.3g}, ρ/ε = {rho_over_epsilon:.3g} 1/s"),
     "adaptive": Text("final payload estimate {payload_estimate:.4g} kg (true {payload:g})"),
     "operational_noint": Text("e_z at rest {steady_z_error_mm:.4g} mm, theory {theory_mm:.4g} mm"),
     "independent": Text("ω = {omega:.3g} rad/s, largest K_P = {largest_K_P:.3g}"),
+    "pd_plus_gravity": Text("ω = {omega:.3g} rad/s, e_z at rest {steady_z_error_mm:.4g} mm, theory {theory_mm:.4g} mm"),
+    "computed_torque": Text("ω = {omega:.3g} rad/s, e_z at rest {steady_z_error_mm:.4g} mm, theory {theory_mm:.4g} mm"),
 }
 #: the bindings of :func:`tuning_build`'s traces (by role), of its layout (by dotted path) and of its title, to the
 #: outputs of :func:`scara.programs.control.control_program` (the panel's :class:`~scara.plots.panels.PageProgram`)
@@ -660,7 +695,7 @@ def _own_props(values, label: str) -> dict:
 def tuning_own_build(values, labels) -> go.Figure:
     """:func:`tuning_build` with one more error trace per controller of the reader's own (``labels``: their names
     in the panel's dropdown, :func:`scara.widgets.control_panel`), after its other traces (roles
-    :func:`own_roles`): in black, each with its own dash, the one of the run's controller shown (the five of
+    :func:`own_roles`): in black, each with its own dash, the one of the run's controller shown (the seven of
     the panel are hidden for such a run, and its own signal is ``e_z``). :func:`tuning_own_update` updates it."""
     fig = tuning_build(values)
     for k, label in enumerate(labels):

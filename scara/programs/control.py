@@ -46,6 +46,10 @@ from ..control.adaptive import pack_gains as _adaptive_gains
 from ..control.independent import (B_BAR, ROUTH_MESSAGE, SLOW_POLE_MESSAGE, IndependentJointController,
                                    independent_law, margin_status, placed_gains)
 from ..control.independent import pack_gains as _independent_gains
+from ..control.classic import (JURY_MESSAGE, PDG_GAINS, ComputedTorqueController, PDPlusGravityController, computed_torque_law,
+                               computed_torque_steady_state, critical_gains, jury_status, pack_bounded_gains,
+                               pd_plus_gravity_law, sampling_limit)
+from .._simulate.controllers import pd_gravity_steady_state_kernel
 from ..control.operational import INTEGRAL_MESSAGE, OperationalSpaceController, integral_status, operational_law
 from ..control.operational import pack_gains as _operational_gains
 from ..control.robust import B_HAT, LAMBDA_MESSAGE, RobustController, lambda_status, robust_law, sliding_rows
@@ -65,14 +69,14 @@ __all__ = ["LAWS", "OTHER_LAW", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "contro
 # the panel's controls, the laws, the layouts of the data and of the outputs
 # --------------------------------------------------------------------------------------------------
 #: The controllers of the panel's dropdown, in its order (``inputs[0]`` is the index): the controllers' names
-LAWS = ("robust", "adaptive", "operational", "operational_noint", "independent")
-ROBUST, ADAPTIVE, OPERATIONAL, NO_INTEGRAL, INDEPENDENT = range(5)
+LAWS = ("robust", "adaptive", "operational", "operational_noint", "independent", "pd_plus_gravity", "computed_torque")
+ROBUST, ADAPTIVE, OPERATIONAL, NO_INTEGRAL, INDEPENDENT, PD_GRAVITY, COMPUTED_TORQUE = range(7)
 #: The index :func:`run_outputs` takes for a law the program does not run (a reader's own controller, run by
-#: :func:`scara.simulate`): no error trace of the five is shown, and its own signal drawn is ``e_z``
+#: :func:`scara.simulate`): no error trace of the program's is shown, and its own signal drawn is ``e_z``
 OTHER_LAW = len(LAWS)
 #: The controller class of each law, and whether it tracks the joint reference (1) or the operational one (0)
 _CLASSES = (RobustController, AdaptiveController, OperationalSpaceController, OperationalSpaceController,
-            IndependentJointController)
+            IndependentJointController, PDPlusGravityController, ComputedTorqueController)
 _JOINT = tuple(1 if c.reference_kind == "joint" else 0 for c in _CLASSES)
 #: The sizes of each law's arrays, from the layouts its controller declares (gains, state, work rows, signals)
 _NG = tuple(c.gains_layout.size for c in _CLASSES)
@@ -122,13 +126,13 @@ SCALARS = ArrayLayout(
     ("max_position_error_mm", 1), ("final_position_error_mm", 1), ("peak_f3", 1), ("duration", 1), ("dt_ms", 1),
     ("rho_over_epsilon", 1), ("payload_estimate", 1), ("largest_K_P", 1), ("steady_z_error_mm", 1), ("theory_mm", 1),
     ("robust_shown", 1), ("adaptive_shown", 1), ("operational_shown", 1), ("operational_noint_shown", 1),
-    ("independent_shown", 1), ("estimate_shown", 1), ("z_shown", 1), ("e_z_shown", 1), ("not_compensated", 1),
+    ("independent_shown", 1), ("pd_plus_gravity_shown", 1), ("computed_torque_shown", 1), ("estimate_shown", 1), ("z_shown", 1), ("e_z_shown", 1), ("not_compensated", 1),
     ("bad_value", 1), ("bad_limit", 1), ("fail_t", 1), ("fail_k", 1), ("fail_value", 1), ("fail_joint", 1),
     ("fail_d3", 1), ("fail_v3", 1), ("fail_code", 1), ("fail_theta2", 1), ("fail_w", 1), ("friction", 1),
     ("reach", 1), ("d3_min", 1), ("d3_max", 1), ("start_px", 1), ("start_py", 1), ("start_pz", 1), ("start_phi_deg", 1))
 (_O_MAXP, _O_RMSP, _O_MAXO, _O_FINALP, _O_STEADYZ, _O_PEAK, _O_CHAT, _O_MAXP_MM, _O_FINALP_MM, _O_PEAK_F3,
  _O_DURATION, _O_DT_MS, _O_RHO_EPS, _O_ESTIMATE, _O_LARGEST_KP, _O_STEADYZ_MM, _O_THEORY_MM, _O_SHOWN,
- _O_SHOWN_ADAPTIVE, _O_SHOWN_OP, _O_SHOWN_NOINT, _O_SHOWN_INDEP, _O_EST_SHOWN, _O_Z_SHOWN, _O_EZ_SHOWN,
+ _O_SHOWN_ADAPTIVE, _O_SHOWN_OP, _O_SHOWN_NOINT, _O_SHOWN_INDEP, _O_SHOWN_PDG, _O_SHOWN_CT, _O_EST_SHOWN, _O_Z_SHOWN, _O_EZ_SHOWN,
  _O_NOT_COMPENSATED, _O_BAD_VALUE, _O_BAD_LIMIT, _O_FAIL_T, _O_FAIL_K, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_FAIL_D3,
  _O_FAIL_V3, _O_FAIL_CODE, _O_FAIL_THETA2, _O_FAIL_W, _O_FRICTION, _O_REACH, _O_D3_MIN, _O_D3_MAX, _O_START_X,
  _O_START_PY, _O_START_PZ, _O_START_PHI) = SCALARS.offsets
@@ -147,6 +151,9 @@ _R_START_STROKE, _R_START_SINGULAR, _R_CLIK_ANNULUS, _R_CLIK_STROKE, _R_CLIK_SIN
 _R_CLIK_NONFINITE, _R_CLIK_SINGULAR, _R_CLIK_ERROR, _R_SHORT = 6, 7, 8, 12   # _R_CLIK_ERROR + component (4)
 _R_GAIN = 20                  # + 2 gain + (0 not finite, 1 not positive)
 _R_LAMBDA, _R_INTEGRAL, _R_SLOW_POLE, _R_ROUTH, _R_SMALL_WEIGHT, _R_FROZEN = 40, 44, 48, 52, 56, 70   # + joint
+_R_SLOW_POLE_PD, _R_JURY = 72, 76   # + joint
+#: where both classic laws keep K_P in their gains (the same layout)
+_CLASSIC_KP = PDG_GAINS.offsets[0]
 _R_TRIAL = 100                # + 20 law + 2 array + (0 writes past, 1 reads past); + 12: reads past some array
 _R_RUN = 1000                 # + 100 law + cause (below)
 _C_LAW, _C_LAW_OTHER, _C_DIVERGED, _C_SINGULAR, _C_JOINT_MAX, _C_JOINT_MIN, _C_TORQUE, _C_SIGNAL = 0, 9, 10, 11, 12, 13, \
@@ -271,27 +278,44 @@ def _make_law(law, inputs, data, model, gains, state, out):
                 return _R_INTEGRAL + i
         _operational_gains(K_P, K_D, K_I, tmax, emax, gains)
         return 0
-    # the independent-joint PID: the pole placement on the nominal model, the controller's friction F = k_r^2 F_m
     omega = inputs[_I_OMEGA]
     code = _refuse_gain(omega, _G_OMEGA, out)
     if code != 0:
         return code
+    W = _filled(omega)
+    K_P = np.empty(4)
+    K_D = np.empty(4)
+    if law == COMPUTED_TORQUE:   # K_P = omega^2, K_D = 2 zeta omega with zeta = 1, checked against the sampling
+        critical_gains(W, _filled(1.0), K_P, K_D)
+        i = jury_status(K_P, K_D, data[_H_DT])
+        if i >= 0:
+            out[_O_BAD_VALUE] = K_P[i]
+            out[_O_BAD_LIMIT] = sampling_limit(1.0, data[_H_DT])
+            out[_O_FAIL_VALUE] = K_D[i]
+            out[_O_FAIL_T] = data[_H_DT]
+            return _R_JURY + i
+        pack_bounded_gains(K_P, K_D, tmax, emax, gains)
+        return 0
+    # the independent-joint PID and PD + gravity: the pole placement on the nominal model (a triple pole, or a double
+    # one without the integral), the controller's friction F = k_r^2 F_m
     lp = lumped_parameters(model)
     F = np.empty(4)
     F[0], F[1], F[2], F[3] = lp.F1, lp.F2, lp.F3, lp.F4
     B_bar = data[_H_B_BAR:_H_B_BAR + 4]
-    W = _filled(omega)
-    K_P = np.empty(4)
-    K_D = np.empty(4)
     K_I = np.empty(4)
-    i = placed_gains(B_bar, W, F, True, K_P, K_D, K_I)
+    integral = law == INDEPENDENT
+    order = 3.0 if integral else 2.0
+    i = placed_gains(B_bar, W, F, integral, K_P, K_D, K_I)
     if i >= 0:
         out[_O_BAD_VALUE] = omega
-        out[_O_BAD_LIMIT] = F[i] / (3.0 * B_bar[i])
+        out[_O_BAD_LIMIT] = F[i] / (order * B_bar[i])
         out[_O_FAIL_VALUE] = K_D[i]
-        out[_O_REACH] = 3.0 * omega * B_bar[i]
+        out[_O_REACH] = order * omega * B_bar[i]
         out[_O_FRICTION] = F[i]
-        return _R_SLOW_POLE + i
+        return (_R_SLOW_POLE if integral else _R_SLOW_POLE_PD) + i
+    if not integral:
+        pack_bounded_gains(K_P, K_D, tmax, emax, gains)
+        return 0
     i = margin_status(F, K_P, K_D, K_I, B_bar)
     if i >= 0:
         out[_O_BAD_VALUE] = K_I[i]
@@ -401,6 +425,10 @@ def _law_step(law, k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
         return adaptive_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
     elif law == OPERATIONAL or law == NO_INTEGRAL:
         return operational_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
+    elif law == PD_GRAVITY:
+        return pd_plus_gravity_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
+    elif law == COMPUTED_TORQUE:
+        return computed_torque_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
     return independent_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau)
 
 
@@ -700,7 +728,7 @@ def run_outputs(law, n, dt, e, tau, sig, pos, t, data, out):
     s, ms), the note's flag and the arrays drawn (:func:`_drawn`; ``pos`` and ``t`` (N,) are work space). ``law``
     is the index of :data:`LAWS`, or :data:`OTHER_LAW` for a law the panel does not know (its own signal is then
     ``e_z``). Returns 0, or the refusal code of a run with nothing after the settling time. The one definition of
-    a run's figures for every law the panel runs: the five of its program and a reader's own
+    a run's figures for every law the panel runs: the seven of its program and a reader's own
     (:func:`own_run_outputs`)."""
     out[_O_DURATION] = (n - 1) * dt
     if not _run_figures(e, tau, n, dt, data[_H_SETTLE], data[_H_REST], pos, out):
@@ -839,6 +867,16 @@ def control_core(inputs, data, out):
     if law == NO_INTEGRAL:
         out[_O_STEADYZ_MM] = 1e3 * out[_O_STEADYZ]
         out[_O_THEORY_MM] = 1e3 * _theory_z(q_out[n - 1], model, plant, inputs[_I_KP])
+    elif law == PD_GRAVITY or law == COMPUTED_TORQUE:   # e_z = d3 - d3_d = -e_3 at rest, by the laws' own kernels
+        out[_O_STEADYZ_MM] = 1e3 * out[_O_STEADYZ]
+        if law == PD_GRAVITY:
+            e3 = pd_gravity_steady_state_kernel(model, plant, gains[_CLASSIC_KP + 2])
+        else:
+            e = np.empty(4)
+            computed_torque_steady_state(q_out[n - 1], model, plant, gains[_CLASSIC_KP:_CLASSIC_KP + 4], np.zeros((5, 4)),
+                                         e)
+            e3 = e[2]
+        out[_O_THEORY_MM] = -1e3 * e3
     return 0
 
 
@@ -1058,6 +1096,11 @@ def control_refusals(p: ScaraParams | None = None) -> dict:
             SLOW_POLE_MESSAGE, i, omega="bad_value", F="friction", reach="reach", K_D="fail_value",
             omega_min="bad_limit").replace("{n:g}", "3")
         refusals[_R_ROUTH + i] = _joint_template(ROUTH_MESSAGE, i, K_I="bad_value", limit="bad_limit")
+        refusals[_R_SLOW_POLE_PD + i] = _joint_template(
+            SLOW_POLE_MESSAGE, i, omega="bad_value", F="friction", reach="reach", K_D="fail_value",
+            omega_min="bad_limit").replace("{n:g}", "2")
+        refusals[_R_JURY + i] = _joint_template(JURY_MESSAGE, i, K_P="bad_value", K_D="fail_value", dt="fail_t",
+                                                omega_max="bad_limit")
     for i in range(N_PI):
         from ..dynamics import PI_NAMES  # noqa: PLC0415
 

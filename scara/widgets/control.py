@@ -15,7 +15,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..control import AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController
+from ..control import (AdaptiveController, ComputedTorqueController, IndependentJointController,
+                       OperationalSpaceController, PDPlusGravityController, RobustController)
 from ..errors import ScaraError, check_count
 from ..params import ScaraParams
 from ..plots._common import CONTROLLER_LABELS, FIGURE_BUDGET, MAX_POINTS
@@ -155,6 +156,10 @@ def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, 
         raise ScaraError(f"controller = {controller!r} is not one of the panel's controllers {_CONTROLLERS}")
     if key == "independent":
         return IndependentJointController(omega=omega)
+    if key == "pd_plus_gravity":
+        return PDPlusGravityController(omega=omega)
+    if key == "computed_torque":
+        return ComputedTorqueController(omega=omega)
     if key == "robust":
         return RobustController(K_P=K_P, K_D=K_D, rho=rho, epsilon=epsilon, Lambda=Lambda)
     if key == "adaptive":
@@ -165,7 +170,7 @@ def make_controller(controller: str, K_P, K_D, Lambda, rho, epsilon, K_D_scale, 
 
 def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 600, controllers=None) -> Panel:
     """The controllers panel as data (:class:`~scara.plots.panels.Panel`, made by
-    :func:`~scara.plots.panels.program_panel`); see :func:`control_panel`. Every move of the five controllers is
+    :func:`~scara.plots.panels.program_panel`); see :func:`control_panel`. Every move of the seven controllers is
     one run of its page program (:func:`scara.programs.control.control_program`) on the data of
     :func:`~scara.programs.control.control_data`, drawn by the bindings of :func:`scara.plots.control.tuning_bindings`
     into :func:`~scara.plots.control.tuning_build`. With ``controllers`` of the reader's own, a move of one of them
@@ -195,7 +200,8 @@ def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 6
         gain("K_D_scale", "adaptive K_D (× book)", 1.0, 0.05, 20.0, ".2f", "adaptive"),
         gain("K_pi", "K_π (weight of m3)", 0.01, 1e-5, 10.0, ".2e", "adaptive"),
         gain("K_I", "K_I (1/s³)", 8000.0, 10.0, 1e6, ".0f", "operational", unit="1/s³"),
-        gain("omega", "ω, independent joint (rad/s)", 30.0, 1.0, 300.0, ".3g", "independent", unit="rad/s"),
+        gain("omega", "ω, independent joint, PD + g, computed torque (rad/s)", 30.0, 1.0, 300.0, ".3g", "independent",
+             "pd_plus_gravity", "computed_torque", unit="rad/s"),
     )
     compact = control_compact(traj, p, points)  # a planned path travels as its plan, sampled by control_prepare
     data = dict(data=control_data(traj, p, points)) if compact is None else \
@@ -231,7 +237,8 @@ def control_declaration(traj=None, p=None, payload: float = 5.0, points: int = 6
 def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600, controllers=None,
                   keep: bool = False) -> LivePanel:
     """Controller dropdown and sliders: the pole ``omega`` (rad/s) of the independent-joint PID (the triple pole of
-    every joint's nominal loop), ``K_P`` (1/s^2) and ``K_D`` (1/s) of the robust and operational laws,
+    every joint's nominal loop), of PD with gravity compensation (the double pole of the same nominal loop) and of
+    computed torque (the critically damped error's natural frequency), ``K_P`` (1/s^2) and ``K_D`` (1/s) of the robust and operational laws,
     ``Lambda`` (1/s) of the robust and adaptive laws, ``rho`` (m/s^2) and ``epsilon`` of the robust term, a scale of
     the adaptive ``K_D`` (times the book's ``(600, 300, 1000, 60)``), the adaptation weight ``K_pi`` of the
     lumped mass ``m3``, ``K_I`` (1/s^3), and the true payload (kg) of the plant (the controllers never know it).
@@ -260,9 +267,9 @@ def control_panel(traj=None, p=None, payload: float = 5.0, points: int = 600, co
     as the others are, by the same kernel (its own signal is ``e_z``). A controller that cannot be built, whose
     arrays do not match their layouts, whose law fails or reads or writes past its arrays, or whose run
     diverges or gives a NaN is refused in the panel with the reason (the package's message, or your exception's
-    type and first line). A label must differ from the panel's five; a parameter of the class or function that
+    type and first line). A label must differ from the panel's seven; a parameter of the class or function that
     is not a gain must have a default (else :class:`ScaraError`). A panel with controllers of your own runs in
-    Jupyter only: the book's page runs the five.
+    Jupyter only: the book's page runs the seven.
 
     ``keep=True`` starts from the last accepted settings of the previous controllers panel built in this Python
     process (re-running the cell keeps the dropdown's choice and the sliders; a choice this panel does not

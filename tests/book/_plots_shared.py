@@ -163,6 +163,10 @@ def run_figures() -> dict:
     four = {n: labelled[n] for n in names if n != CONTROLLER_LABELS["operational_noint"]}
     ideal = scara.inverse_dynamics(ref.q, ref.qd, ref.qdd, P5)
     slow = {k: scara.simulate(scara.AdaptiveController(K_pi=k), tr, P5, joint_reference=ref) for k in (0.01, 1.0)}
+    pdg, ct = scara.PDPlusGravityController(), scara.ComputedTorqueController()
+    classic = {CONTROLLER_LABELS[c.name]: scara.simulate(c, tr, P5, joint_reference=ref) for c in (pdg, ct)}
+    classic_rest = {CONTROLLER_LABELS["pd_plus_gravity"]: pdg.steady_state_error(P5),
+                    CONTROLLER_LABELS["computed_torque"]: ct.steady_state_error(P5)}
     figs.update({
         "control_robust_term": plots.robust_term_figure(rr, robust.epsilon),
         "control_boundary_layer": plots.boundary_layer_slider_figure(layers, 0.016, window=(40.0, 40.15)),
@@ -170,6 +174,7 @@ def run_figures() -> dict:
         "control_steady_state": plots.steady_state_figure(orr, onr, 5.0 * P5.g0 / (b33 * op.K_P[2]),
                                                           5.0 * P5.g0 / b33),
         "control_error_norm": plots.error_norm_figure(labelled, groups=groups),
+        "control_classic": plots.joint_error_figure(classic, classic_rest),
         "control_joint_motion": plots.joint_motion_figure(labelled),
         "control_operational_error": plots.operational_error_figure(labelled),
         "control_torques": plots.torque_figure({n: labelled[n] for n in names[:4]}),

@@ -9,7 +9,7 @@ import pytest
 
 import scara
 from scara import plots
-from scara.plots.control import figure_slider, saturation_figure
+from scara.plots.control import CONTROLLER_LABELS, figure_slider, saturation_figure
 
 from _plots_shared import SAMPLE_COUNTS, check_sample_count_refused, run_figures
 
@@ -75,8 +75,29 @@ def test_saturation_figure_and_the_figure_slider(figures):
         figure_slider({"a": 1}, "x")
 
 
+def test_joint_error_figure_draws_each_joint_and_the_predicted_sag(figures):
+    fig = figures["control_classic"]
+    labels = [CONTROLLER_LABELS["pd_plus_gravity"], CONTROLLER_LABELS["computed_torque"]]
+    assert [t.name for t in fig.data if t.showlegend is not False] == labels
+    for key, label in zip(("pd_plus_gravity", "computed_torque"), labels):
+        mine = [t for t in fig.data if t.legendgroup == label]
+        assert len(mine) == 5 and {t.line.color for t in mine} == {plots.PALETTE[key]}
+        predicted = mine[-1]
+        assert predicted.line.dash == "dot" and predicted.yaxis == "y3"   # the quill's panel, in mm
+        sag = scara.PDPlusGravityController().steady_state_error(scara.ScaraParams().with_payload(5.0))[2]
+        assert predicted.y[0] == pytest.approx(1e3 * sag, rel=1e-3)
+    from types import SimpleNamespace as NS
+
+    run = NS(t=np.arange(10) * 1e-3, q=np.zeros((10, 4)), q_d=np.zeros((10, 4)), tau=np.zeros((10, 4)), e=np.zeros((10, 4)),
+             controller="robust")
+    with pytest.raises(scara.ScaraError, match=r"predicted must map labels of the runs \['a'\] .*unknown: \['x'\]"):
+        plots.joint_error_figure({"a": run}, {"x": np.zeros(4)})
+    with pytest.raises(scara.ScaraError, match=r"predicted\['a'\] must be 4 finite joint errors"):
+        plots.joint_error_figure({"a": run}, {"a": [0.0, np.nan, 0.0, 0.0]})
+
+
 @pytest.mark.parametrize("build, args, count", [
-    ("joint_motion_figure", (None,), "points"), ("operational_error_figure", (None,), "points"),
+    ("joint_motion_figure", (None,), "points"), ("joint_error_figure", (None,), "points"), ("operational_error_figure", (None,), "points"),
     ("error_norm_figure", (None,), "points"), ("torque_figure", (None,), "points"),
     ("payload_estimate_figure", (None, 5.0), "points"), ("robust_term_figure", (None, 0.05), "points"),
     ("tuning_figure", (None, {}), "points"),

@@ -214,7 +214,7 @@ def run_figures():
 TALL = {"control_joint_motion": 780, "control_torques": 780, "control_torque_differences": 780,
         "control_operational_error": 780, "control_boundary_layer": 780, "control_boundary_layer_notes": 780,
         "control_robust_term": 780, "control_steady_state": 780, "control_saturation": 780,
-        "control_estimate_slider": 780}
+        "control_estimate_slider": 780, "control_classic": 780}
 
 
 def _broken(figures, check, **per_figure):

@@ -1,7 +1,7 @@
 """Panels that take the reader's own work, from Python: a number typed beside a slider outside its range is refused
 with the page panel's message (never clamped) and a valid one restores the figures; the controllers panel runs a
 controller of the reader's own (a class or a factory, given the panel's gains) by ``scara.simulate`` and draws it
-with the same kernel as its own five, and refuses one that fails with a message in the panel; the waypoint
+with the same kernel as its own seven, and refuses one that fails with a message in the panel; the waypoint
 editor's plan runs in the controllers panel; ``keep=True`` starts a panel from the last accepted settings of the
 previous one. (``test_jupyterlab.py`` types out-of-range values in a real JupyterLab.)"""
 from __future__ import annotations
@@ -22,7 +22,7 @@ from scara import (  # noqa: E402
 from scara._compile import ArrayLayout  # noqa: E402
 from scara.control import control_summary  # noqa: E402
 from scara.dynamics import gravity_kernel  # noqa: E402
-from scara.plots.control import tuning_figure  # noqa: E402
+from scara.plots.control import TUNING_CONTROLLERS, tuning_figure  # noqa: E402
 from scara.plots.panels import range_template  # noqa: E402
 from scara.widgets import (  # noqa: E402
     clik_panel, control_panel, dynamics_panel, inverse_kinematics_panel, kinematics_panel, manipulability_panel,
@@ -218,9 +218,11 @@ def test_ones_own_controller_tuned_in_the_panel_equals_simulate_of_it(traj, jref
     label = "my PD + gravity"
     panel = control_panel(traj, controllers={label: MyCompiledPDGravity})
     options = panel.controls["controller"].options
-    assert tuple(options[:5]) == ("robust", "adaptive (Slotine-Li)", "operational ID + integral",
-                                  "operational ID, no integral", "independent joint PID") and options[5] == label
-    assert panel.declaration.page is None   # the book's page runs the five only
+    n = len(TUNING_CONTROLLERS)   # the panel's own controllers come first
+    assert tuple(options[:n]) == ("robust", "adaptive (Slotine-Li)", "operational ID + integral",
+                                  "operational ID, no integral", "independent joint PID", "PD + gravity compensation",
+                                  "computed torque") and options[n] == label
+    assert panel.declaration.page is None   # the book's page runs its own controllers only
     with panel.hold():
         panel.controls["controller"].value = label
         panel.controls["K_P"].value = 4000.0
@@ -239,10 +241,10 @@ def test_ones_own_controller_tuned_in_the_panel_equals_simulate_of_it(traj, jref
     shown = panel._states[0]["data"]
     own = next(t for t in shown if t["name"] == label)
     assert own["visible"] is True and _same(own["x"], full["data"][0]["x"]) and _same(own["y"], full["data"][0]["y"])
-    for t, f in zip(shown[5:12], full["data"][5:12]):   # the torques and the run's own signal (e_z)
+    for t, f in zip(shown[n:n + 7], full["data"][n:n + 7]):   # the torques and the run's own signal (e_z)
         assert t["name"] == f["name"] and _same(t["x"], f["x"]) and _same(t["y"], f["y"]), t["name"]
         assert t.get("visible", True) == f.get("visible", True), t["name"]
-    assert not any(t.get("visible", True) for t in shown[:5])   # the five controllers' errors hidden
+    assert not any(t.get("visible", True) for t in shown[:n])   # the panel's controllers' errors hidden
     title = panel.figures[0].layout.title.text
     assert title.startswith(f"{label}: max ‖e_p‖ after 1 s {1e3 * s['max_position_error']:.4g} mm, at rest "
                             f"{1e3 * s['final_position_error']:.3g} mm<br>peak f3 {s['peak_tau'][2]:.0f} N")

@@ -85,3 +85,43 @@ def test_integral_limit_closed_forms(params):
     assert r["cont"] == pytest.approx(54000.0 * 22.5 / (22.5 + 5.0 + params["m_L"] - 5.0), rel=1e-9)
     assert r["disc"] < r["cont"] and r["disc"] == pytest.approx(r["cont"], rel=0.1)
     assert r["radius_below"] < 1.0 < r["radius_above"]
+
+
+@pytest.mark.parametrize("params", drawn("ex-ctl-pdg-sag"))
+def test_pdg_sag_is_the_payloads_weight_over_the_spring(params):
+    r = solve("ex-ctl-pdg-sag", params)
+    # m_L g0 / (omega^2 B_bar33), B_bar33 = m_l3 + k_r3^2 I_m3 = 22.5 kg
+    assert r["sag_mm"] == pytest.approx(1e3 * params["m_L"] * 9.81 / (params["omega"] ** 2 * 22.5), rel=1e-3)
+    assert r["ratio"] == pytest.approx(params["m_L"] / (10.0 + params["m_L"]), rel=1e-12)
+    # the runs: the law's own sag, and the independent PD's with the same spring carrying the quill as well
+    assert r["sag_sim_mm"] == pytest.approx(r["sag_mm"], rel=1e-6)
+    assert r["sag_sim_mm"] / r["pd_sag_sim_mm"] == pytest.approx(r["ratio"], rel=1e-6)
+
+
+@pytest.mark.parametrize("params", drawn("ex-ctl-ct-omega"))
+def test_ct_omega_squared_scales_with_payload_over_sag(params):
+    r = solve("ex-ctl-ct-omega", params)
+    half = solve("ex-ctl-ct-omega", {**params, "sag_max_mm": 2 * params["sag_max_mm"]}) \
+        if 2 * params["sag_max_mm"] <= 1.0 else None
+    assert r["formula"] == pytest.approx(math.sqrt(params["m_L"] * 9.81 / (22.5 * 1e-3 * params["sag_max_mm"])),
+                                         rel=1e-12)
+    assert 0 < r["omega_min"] / r["formula"] - 1 < 1e-3       # the rotor coupling, a few parts in 10^4
+    if half is not None:                                        # omega^2 sag is constant
+        assert half["omega_min"] ** 2 * 2 == pytest.approx(r["omega_min"] ** 2, rel=1e-12)
+    # the run at the next whole rad/s ends within the bound, and within the 1/omega^2 scaling of it
+    assert r["sag_run_mm"] < params["sag_max_mm"]
+    assert r["sag_run_mm"] == pytest.approx(params["sag_max_mm"] * (r["omega_min"] / r["omega_run"]) ** 2, rel=1e-6)
+
+
+@pytest.mark.parametrize("params", drawn("ex-ctl-ct-step"))
+def test_ct_step_bounds_differ_by_the_modelled_weight(params):
+    r = solve("ex-ctl-ct-step", params)
+    k = 22.5 * params["omega"] ** 2        # B_hat33 K_P3, N/m
+    assert r["delta_down_mm"] == pytest.approx(1e3 * (params["f_max"] + 98.1) / k, rel=1e-12)
+    assert r["delta_up_mm"] == pytest.approx(1e3 * (params["f_max"] - 98.1) / k, rel=1e-12)
+    # (down - up) k = twice the modelled weight, whatever the bound
+    assert 1e-3 * (r["delta_down_mm"] - r["delta_up_mm"]) * k == pytest.approx(2 * 98.1, rel=1e-12)
+    # 99 % of each step: the peak force is 99 % of (f_max +- weight) -+ weight, inside the bound; 101 % stops at once
+    assert r["peak_down"] == pytest.approx(0.99 * (params["f_max"] + 98.1) - 98.1, rel=1e-9)
+    assert r["peak_up"] == pytest.approx(0.99 * (params["f_max"] - 98.1) + 98.1, rel=1e-9)
+    assert r["stop_down"] == r["stop_up"] == 0.0

@@ -124,6 +124,10 @@ def _check_run(values, traj, jref, data, outputs, points):
     if law == "operational_noint":
         np.testing.assert_allclose(v["theory_mm"], 1e3 * c.steady_state_error(res.plant, res.q[-1])[2], rtol=1e-12)
         np.testing.assert_allclose(v["steady_z_error_mm"], 1e3 * s["steady_z_error"], rtol=1e-12)
+    if law in ("pd_plus_gravity", "computed_torque"):   # e_z = d3 - d3_d = -e_3 at rest
+        e = c.steady_state_error(res.plant) if law == "pd_plus_gravity" else c.steady_state_error(res.plant, res.q[-1])
+        np.testing.assert_allclose(v["theory_mm"], -1e3 * e[2], rtol=1e-12)
+        np.testing.assert_allclose(v["steady_z_error_mm"], 1e3 * s["steady_z_error"], rtol=1e-12)
     assert v["not_compensated"] == (1.0 if s["final_position_error"] > 1e-3 else 0.0)
     np.testing.assert_allclose(v["max_position_error_mm"], 1e3 * s["max_position_error"], rtol=1e-12)
     return v
@@ -217,6 +221,10 @@ REFUSED = [   # (settings, what the package refuses them with: its message as th
     ("independent", dict(omega=1.0)),                                          # the sag passes max_error
     ("independent", dict(omega=0.42)), ("independent", dict(omega=0.3)),       # below the quill's, the wrist's friction
     ("independent", dict(omega=-1.5)),
+    ("pd_plus_gravity", dict(omega=1.0)), ("computed_torque", dict(omega=1.0)),  # the sag passes max_error
+    ("pd_plus_gravity", dict(omega=0.5)),                                      # below the quill's friction (PD)
+    ("pd_plus_gravity", dict(omega=math.nan)),
+    ("computed_torque", dict(omega=1500.0)), ("computed_torque", dict(omega=-1.5)),   # the sampling limit (Jury)
     ("robust", dict(payload=-1.5)),
 ]
 
@@ -332,6 +340,7 @@ def test_the_laws_pass_their_trial_on_guarded_copies_and_a_short_array_is_caught
     data[h.B_hat:h.B_hat + 4] = pc.B_HAT
     data[h.B_bar:h.B_bar + 4] = pc.B_BAR
     data[h.adaptive_K_D:h.adaptive_K_D + 4] = pc.ADAPTIVE_K_D
+    data[h.dt] = 1e-3   # computed torque's gains are checked against the sampling period
     for law in range(len(pc.LAWS)):
         inputs[0] = law
         r0 = np.concatenate([q0 if pc._JOINT[law] else scara.pose(q0), np.zeros(8)])   # at rest where the arm is

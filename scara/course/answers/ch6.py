@@ -10,9 +10,12 @@ from functools import lru_cache
 import numpy as np
 from scipy.optimize import brentq
 
-from scara import (AdaptiveController, IndependentJointController, OperationalSpaceController, RobustController,
-                   ScaraParams, UnstableError, clik2, inertia, reference_trajectory, simulate)
+from scara import (AdaptiveController, ComputedTorqueController, IndependentJointController,
+                   OperationalSpaceController, PDPlusGravityController, RobustController, ScaraParams, UnstableError,
+                   clik2, inertia, reference_trajectory, simulate)
+from scara._simulate import joint_setpoint
 from scara.control import chattering, control_summary, inertia_eigenvalues
+from scara.control import sampling_limit as omega_limit
 from scara.course.answers import solves
 from scara.errors import ScaraError
 
@@ -114,6 +117,75 @@ def ij_windup(bound_fig: float, bound: float) -> dict:
             "last_clipped": float(aw.t[np.flatnonzero(aw.saturated > 0)[-1]]),
             "max_um": 1e6 * control_summary(aw)["max_position_error"], "stop": stop,
             "max_error": IndependentJointController().max_error, "room": bound - weight}
+
+
+@solves("ex-ctl-pdg-sag")
+def pdg_sag(m_L: float, omega: float) -> dict:
+    """PD with gravity compensation, gains placed at a double pole ``omega``: the quill's sag m_L g0 / K_P3 at rest,
+    its ratio to the independent PD's m3 g0 / K_P3, and the runs that check both."""
+    _payload(m_L)
+    model, traj, ref, _ = _setup()
+    plant = model.with_payload(m_L)
+    ctl = PDPlusGravityController(omega=omega)
+    sag = m_L * plant.g0 / ctl.K_P[2]
+    run = simulate(ctl, traj, plant, joint_reference=ref)
+    err = (run.q_d - run.q)[_rest(run)]
+    pd = simulate(IndependentJointController(integral=False, omega=omega), traj, plant, joint_reference=ref)
+    return {"sag_mm": 1e3 * sag, "sag_sim_mm": -1e3 * err[:, 2].mean(), "K_P3": ctl.K_P[2],
+            "ratio": m_L / plant.m3, "pd_sag_sim_mm": -1e3 * (pd.q_d - pd.q)[_rest(pd), 2].mean(),
+            "other_rest": float(np.abs(err[:, [0, 1, 3]]).max())}
+
+
+@solves("ex-ctl-ct-omega")
+def ct_omega(m_L: float, sag_max_mm: float) -> dict:
+    """Computed torque: the smallest natural frequency keeping the quill's sag at rest below ``sag_max_mm``. The
+    sag K_P^-1 B_hat^-1 (g - g_hat) falls as 1 / omega^2, so omega_min = sqrt(sag(omega = 1) / sag_max), with the
+    rotor coupling; a run at the next whole rad/s checks it."""
+    _payload(m_L)
+    model, traj, ref, q_path = _setup()
+    plant = model.with_payload(m_L)
+    unit = ComputedTorqueController(omega=1.0)
+    sag_1 = -unit.steady_state_error(plant, ref.q[-1])[2]       # m, at omega = 1 rad/s
+    omega_min = math.sqrt(sag_1 / (1e-3 * sag_max_mm))
+    limit = omega_limit(1.0, traj.dt)
+    if omega_min >= limit:
+        raise ScaraError(f"exercise ex-ctl-ct-omega: omega = {omega_min:.0f} rad/s is past the sampling limit")
+    omega_run = math.ceil(omega_min)
+    run = simulate(ComputedTorqueController(omega=omega_run), traj, plant, joint_reference=ref)
+    B11 = inertia(q_path, model)[:, 0, 0].max()
+    return {"omega_min": omega_min, "B_hat33": inertia(ref.q[-1], model)[2, 2],
+            "formula": math.sqrt(m_L * plant.g0 / (inertia(ref.q[-1], model)[2, 2] * 1e-3 * sag_max_mm)),
+            "omega_run": float(omega_run), "sag_run_mm": -1e3 * (run.q_d - run.q)[_rest(run), 2].mean(),
+            "limit": limit, "nm_per_mrad": 1e-3 * B11 * omega_run ** 2, "B_hat11": B11}
+
+
+@solves("ex-ctl-ct-step")
+def ct_step(omega: float, f_max: float) -> dict:
+    """Computed torque at rest, the quill's reference stepping down or up: the largest steps whose first force
+    B_hat33 omega^2 Delta - m3_hat g0 stays within ``f_max``; runs 1 % below complete, 1 % above stop at t = 0."""
+    model, _, _, _ = _setup()
+    plant = model.with_payload(5.0)
+    q_set = np.array([0.0, -math.pi / 2, 0.5, 0.0])
+    B33 = inertia(q_set, model)[2, 2]
+    weight = model.m3 * model.g0
+    down = (f_max + weight) / (B33 * omega ** 2)
+    up = (f_max - weight) / (B33 * omega ** 2)
+    bounds = (200.0, 200.0, f_max, 50.0)
+    ctl = ComputedTorqueController(omega=omega, tau_max=bounds)
+    if max(down, up) >= ctl.max_error:
+        raise ScaraError(f"exercise ex-ctl-ct-step: a step of {1e3 * max(down, up):.1f} mm passes the error bound")
+    setpoint = joint_setpoint(q_set, 0.3)
+    peaks, stops = {}, {}
+    for name, sign, delta in (("down", 1.0, down), ("up", -1.0, up)):
+        start = q_set - sign * np.array([0.0, 0.0, 0.99 * delta, 0.0])   # q_d - q = +-Delta on the quill
+        run = simulate(ctl, None, plant, joint_reference=setpoint, q0=start)
+        peaks[name] = float(np.abs(run.tau[:, 2]).max())
+        stops[name] = _stopped(lambda: simulate(ctl, None, plant, joint_reference=setpoint,
+                                                q0=q_set - sign * np.array([0.0, 0.0, 1.01 * delta, 0.0])),
+                               "ex-ctl-ct-step", f"the {name} step 1 % past the limit", "tau_max")
+    return {"delta_down_mm": 1e3 * down, "delta_up_mm": 1e3 * up, "B_hat33": B33, "weight": weight,
+            "K_P3": ctl.K_P[2], "peak_down": peaks["down"], "peak_up": peaks["up"], "stop_down": stops["down"],
+            "stop_up": stops["up"]}
 
 
 @solves("ex-ctl-no-robust")

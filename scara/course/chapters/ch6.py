@@ -4,14 +4,14 @@ from scara.course.exercises import Answer, Exercise, Param
 DOC = "06_control"
 
 _PAYLOAD = dict(unit="kg", fmt=".1f", text="payload the controller does not know", low=1.0, high=10.0, step=0.5)
+#: the double pole the PD gains are placed at, and the largest sag a design must respect (one declaration each)
+_PD_POLE = Param("omega", 30.0, "rad/s", ".0f", "double pole of the PD loops", low=20.0, high=40.0, step=5.0)
+_SAG_MAX = Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest", low=0.2, high=1.0,
+                 step=0.1)
 
 EXERCISES = (
     Exercise("ex-ctl-ij-pd", DOC,
-             params=(Param("m_L", 5.0, **_PAYLOAD),
-                     Param("omega", 30.0, "rad/s", ".0f", "double pole of the PD loops",
-                           low=20.0, high=40.0, step=5.0),
-                     Param("sag_max_mm", 0.5, "mm", ".1f", "largest sag of the quill allowed at rest",
-                           low=0.2, high=1.0, step=0.1)),
+             params=(Param("m_L", 5.0, **_PAYLOAD), _PD_POLE, _SAG_MAX),
              answers=(Answer("sag_mm", "(a) the quill's sag at rest (the other joints: none)", "mm", 0.01,
                              shown="the chapter's text computes the PD sag for these numbers, with (6.9)"),
                       Answer("omega_min", "(b) the smallest pole keeping the sag within the bound", "rad/s", 0.01)),
@@ -36,6 +36,34 @@ EXERCISES = (
                   "past the weight; the excess can only be unwound by an error of the other sign, so the quill "
                   "overshoots. (b) With anti-windup the run completes, the force longer at its bound; without it "
                   "the little room cannot unwind the integral, the swings grow and the error bound stops the run."),
+    Exercise("ex-ctl-pdg-sag", DOC,
+             params=(Param("m_L", 5.0, **_PAYLOAD), _PD_POLE),
+             answers=(Answer("sag_mm", "(a) the quill's sag at rest", "mm", 0.01,
+                             shown="the chapter's text computes it for the book's numbers, with (eq-ctl-pdg-sag)"),
+                      Answer("ratio", "(b) that sag over the independent-joint PD's with the same gains", "", 0.01)),
+             note="(a) At rest K_P e = g - g_hat: only the quill errs, by m_L g0 / K_P3 with K_P3 = omega^2 B_bar33. "
+                  "(b) The independent PD carries m3 g0 with the same spring, so the ratio is m_L / (m_l3 + m_L). "
+                  "(c) With an exact g_hat the rest is the set point itself, for any positive K_P (La Salle); K_P "
+                  "still decides how fast the arm gets there, and how far a disturbance pushes it."),
+    Exercise("ex-ctl-ct-omega", DOC,
+             params=(Param("m_L", 5.0, **_PAYLOAD), _SAG_MAX),
+             answers=(Answer("omega_min", "(a) the smallest omega keeping the sag within the bound", "rad/s", 0.01),),
+             note="(a) The sag m_L g0 / (B_hat33 omega^2) falls as 1/omega^2: omega >= sqrt(m_L g0 / (B_hat33 "
+                  "sag_max)) (the rotor coupling adds a few parts in 10^4). (b) omega T stays far below "
+                  "min(4 zeta, 1/zeta) = 1. (c) The torque per unit error grows as omega^2, on every joint: joint 1 "
+                  "pays B_hat11 omega^2 per radian, and noise and delays are amplified as much."),
+    Exercise("ex-ctl-ct-step", DOC,
+             params=(Param("omega", 60.0, "rad/s", ".0f", "natural frequency of computed torque (zeta = 1)",
+                           low=40.0, high=80.0, step=5.0),
+                     Param("f_max", 600.0, "N", ".0f", "the quill's force bound", low=400.0, high=800.0,
+                           step=50.0)),
+             answers=(Answer("delta_down_mm", "(a) the largest downward step of the quill's reference", "mm", 0.01),
+                      Answer("delta_up_mm", "(b) the largest upward step of the quill's reference", "mm", 0.01)),
+             note="At the step's first sample the error is the step and its rate zero, so y_3 = K_P3 Delta and the "
+                  "force is B_hat33 omega^2 Delta - m3_hat g0, the largest of the whole response (critically damped, "
+                  "|y| falls from there). (a) Down (d3 grows): Delta <= (f_max + m3_hat g0) / (B_hat33 omega^2). "
+                  "(b) Up: |Delta| <= (f_max - m3_hat g0) / (B_hat33 omega^2): the modelled weight uses part of the "
+                  "force. (c) The payload is not in the model, so it does not change the commanded force."),
     Exercise("ex-ctl-no-robust", DOC,
              params=(Param("m_L", 5.0, **_PAYLOAD),
                      Param("rho", 1e-4, "m/s²", ".0e", "the negligible robust term")),
