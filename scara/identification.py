@@ -515,7 +515,7 @@ def lowpass(x, cutoff: float, dt: float, order: int = 4) -> np.ndarray:
     order = check_count(order, "order", 1, 10, "filter order")
     if cutoff >= 0.5 / dt:
         raise ScaraError(f"cutoff = {cutoff:g} Hz must be below the Nyquist frequency 1 / (2 dt) = {0.5 / dt:g} Hz")
-    x = np.asarray(x, dtype=float)
+    x = _numbers(x, "x must be a series of numbers", ShapeError)
     if x.ndim not in (1, 2):
         raise ShapeError(f"x must be a series of shape (N,) or (N, m), got {x.shape}")
     if not np.all(np.isfinite(x)):
@@ -609,7 +609,7 @@ class Estimate:
 
 
 def _stack(Y, tau):
-    Y = np.asarray(Y, dtype=float)
+    Y = _numbers(Y, "Y must be an array of numbers", ShapeError)
     if Y.ndim != 2 or Y.shape[1] != N_PI or Y.shape[0] % 4:
         raise ShapeError(f"Y must be a stacked regressor of shape (4N, {N_PI}), got {np.shape(Y)}")
     Y = as_array(Y, "Y", (N_PI,), allow_batch=True)

@@ -309,6 +309,8 @@ def test_bad_inputs_raise_clear_errors(excitation, grid_motion):
         least_squares(Y[:, :12], tau)
     with pytest.raises(ShapeError, match="tau must have shape"):
         least_squares(Y, tau[:-4])
+    with pytest.raises(ShapeError, match="Y must be an array of numbers"):
+        least_squares("abc", tau)
     bad = Y.copy()
     bad[3, 2] = np.nan
     with pytest.raises(NonFiniteError):
@@ -331,6 +333,10 @@ def test_bad_inputs_raise_clear_errors(excitation, grid_motion):
         lowpass(np.ones(100), 600.0, 1e-3)
     with pytest.raises(ShapeError, match="needs more than"):
         lowpass(np.ones(10), 5.0, 1e-3)
+    with pytest.raises(ShapeError, match="x must be a series of numbers"):
+        lowpass("abc", 5.0, 1e-3)
+    with pytest.raises(NonFiniteError, match="x holds NaN"):
+        lowpass(np.full(100, np.nan), 5.0, 1e-3)
     with pytest.raises(ShapeError, match="leave none"):
         filtered_data(np.arange(500) * 1e-3, np.zeros((500, 4)), np.zeros((500, 4)), 5.0)
     with pytest.raises(ShapeError, match="same N"):
