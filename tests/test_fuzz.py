@@ -58,8 +58,8 @@ TIMEOUT_S = 10.0  # per example: SIGALRM turns a longer call into a failure nami
 HARD_TIMEOUT_FACTOR = 3  # a call that ignores SIGALRM (compiled code) ends the process after 3 x the timeout
 LOG = os.environ.get("SCARA_FUZZ_LOG")
 
-MODULES = ("kinematics", "_manipulability", "trajectory", "_clik", "dynamics", "_simulate", "control", "gains",
-           "params", "errors")
+MODULES = ("kinematics", "_manipulability", "trajectory", "_clik", "dynamics", "_simulate", "control", "identification",
+           "gains", "params", "errors")
 
 
 def _mod(name):
@@ -460,6 +460,55 @@ TABLE = [
     Entry("control", "design_inertia_estimate", lambda: [_qs(), _payloads(), _p()], examples=EXPENSIVE_EXAMPLES),
     Entry("control", "rho_bound", lambda: [scalar("alpha", 0, 0.99), scalar("qdd_max", 0, 100),
                                            scalar("eta0_max", 0, 100)]),
+    # ---- identification ----------------------------------------------------------------------------------
+    Entry("identification", "encoder_resolution", lambda: [integer("counts", 1, 2 ** 20, True),
+                                                           scalar("quill", 1e-7, 1e-3, True)]),
+    Entry("identification", "quantise", lambda: [vector("q", (3, 4), -3, 3), vector("resolution", 4, 1e-6, 1e-2, True)]),
+    Entry("identification", "draw_arm", lambda: [
+        integer("seed", 0, 10 ** 6), scalar("spread", 0, 0.5, True),
+        Arg("payload", st.sampled_from([(0.0, 10.0), (1.0, 2.0)]),
+            st.sampled_from(BAD_TYPES + BAD_FLOATS + ((2.0, 1.0), (-1.0, 2.0), (np.nan, 1.0), (1.0,))), True),
+        F.params_arg("base")]),
+    Entry("identification", "FourierExcitation", lambda: [vector("a", (4, 3)), vector("b", (4, 3)), q_arg("offset"),
+                                                          scalar("period", 0.5, 20)]),
+    Entry("identification", "FourierExcitation.at_rest", lambda: [
+        vector("free", 16), q_arg("offset", True, -1, 1), scalar("period", 0.5, 20, True)],
+          target=lambda: _mod("identification").FourierExcitation.at_rest),
+    Entry("identification", "stacked_regressor", lambda: _ident_motion_args() + [_p()]),
+    Entry("identification", "regressor_condition", lambda: _ident_motion_args() + [_p()], allow_inf=True),
+    Entry("identification", "excitation_margins", lambda: _ident_motion_args() + [_p()]),
+    # every argument given (the defaults search 200 samples for up to 200 iterations): a few iterations on a small
+    # grid keep an example within the deadline
+    Entry("identification", "optimise_excitation", lambda: [
+        integer("harmonics", 2, 3), scalar("period", 2, 10), integer("seed", 0, 5), integer("grid", 12, 24),
+        vector("offset", 4, valid=st.sampled_from([np.array([0.0, -1.5, 0.5, 0.0]), np.array([1.0, 1.0, 0.3, 2.0])])),
+        integer("maxiter", 1, 3), _p()], examples=EXPENSIVE_EXAMPLES),
+    Entry("identification", "torque_noise_std", lambda: [vector("tau", (6, 4), -100, 100),
+                                                         scalar("fraction", 1e-4, 0.1, True)]),
+    Entry("identification", "measure", lambda: [
+        F.params_arg("arm", optional=False), vector("reference", (301, 12), valid=st.just(None).map(
+            lambda _: _ident_reference())), integer("seed", 0, 100), scalar("noise", 1e-4, 0.1, True),
+        vector("resolution", 4, 1e-6, 1e-2, True)], examples=EXPENSIVE_EXAMPLES),
+    Entry("identification", "read_sensors", lambda: [
+        _result_arg("run"), integer("seed", 0, 100), scalar("noise", 1e-4, 0.1, True),
+        vector("resolution", 4, 1e-6, 1e-2, True), vector("sigma", 4, 1e-3, 1, True)]),
+    Entry("identification", "lowpass", lambda: [vector("x", (60, 2)), scalar("cutoff", 0.5, 100), scalar("dt", 1e-3, 2e-3),
+                                                integer("order", 1, 6, True)]),
+    Entry("identification", "filtered_data", lambda: [
+        vector("t", 3001, valid=st.just(np.arange(3001) * 1e-3)),
+        vector("q", (3001, 4), valid=st.just(None).map(lambda _: _ident_measurement().q)),
+        vector("tau", (3001, 4), valid=st.just(None).map(lambda _: _ident_measurement().tau)),
+        scalar("cutoff", 5, 20, True), integer("order", 1, 6, True)]),
+    Entry("identification", "least_squares", lambda: [
+        vector("Y", (80, 13), valid=st.just(None).map(lambda _: _ident_system()[0])),
+        vector("tau", 80, valid=st.just(None).map(lambda _: _ident_system()[1])),
+        bool_arg("weighted"), scalar("confidence", 0.5, 0.99, True)]),
+    Entry("identification", "base_parameters", lambda: [
+        vector("Y", (80, 13), valid=st.just(None).map(lambda _: _ident_system()[0])), scalar("rtol", 1e-14, 1e-3, True)]),
+    Entry("identification", "identify", lambda: [
+        fixed("measurement", st.just(None).map(lambda _: _ident_measurement())), scalar("cutoff", 5, 20, True),
+        bool_arg("weighted"), scalar("confidence", 0.5, 0.99, True), _p()]),
+    Entry("identification", "predicted_torques", lambda: _ident_motion_args() + [pi_arg(), _p()]),
     # ---- gains, params, errors ---------------------------------------------------------------------------
     Entry("gains", "gain_vector", lambda: [
         gain("value"), contract("name", "K"), contract("n", 4), contract("default", None),
@@ -766,6 +815,45 @@ def _scara_params_args():
     return args
 
 
+
+# --------------------------------------------------------------------------------------------------
+# valid objects of the identification entries (built once, on first use)
+# --------------------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=None)
+def _ident_excitation():
+    """A small exciting motion: three harmonics, a period of 3 s, starting at rest."""
+    I = _mod("identification")
+    free = np.random.default_rng(0).standard_normal(16) * 0.05
+    return fz.label(I.FourierExcitation.at_rest(free, period=3.0), "<FourierExcitation 3 s>")
+
+
+def _ident_reference():
+    return _ident_excitation().reference(1)[:301]
+
+
+@functools.lru_cache(maxsize=None)
+def _ident_measurement():
+    """A 3 s measurement of the arm carrying 5 kg along the small excitation (3001 samples)."""
+    I = _mod("identification")
+    m = I.measure(scara.ScaraParams().with_payload(5.0), _ident_excitation().reference(1), seed=0)
+    return fz.label(m, "<measure 3 s>")
+
+
+@functools.lru_cache(maxsize=None)
+def _ident_system():
+    """A stacked regressor (80, 13) of 20 samples of the small excitation and its exact torques."""
+    I = _mod("identification")
+    q, qd, qdd = _ident_excitation().motion(np.linspace(0.1, 2.9, 20))
+    Y = I.stacked_regressor(q, qd, qdd)
+    return Y, Y @ _mod("dynamics").dynamic_parameters(scara.ScaraParams().with_payload(5.0))
+
+
+def _ident_motion_args():
+    """q, qd, qdd (5, 4) of the small excitation (hostile: wrong shapes, NaN, strings...)."""
+    valid = [st.just(None).map(lambda _, k=k: _ident_excitation().motion(np.linspace(0.2, 2.8, 5))[k]) for k in range(3)]
+    return [vector(name, (5, 4), valid=v) for name, v in zip(("q", "qd", "qdd"), valid)]
+
+
 def _table():
     return {e.key: e for e in TABLE}
 
@@ -798,6 +886,9 @@ NOT_FUZZED = {
     "control_law",
     # the chapter-6 name of scara.gains.gain_vector (the same function, fuzzed under that name)
     "positive_gains",
+    # the identification's result containers (filled by optimise_excitation, measure, filtered_data, least_squares,
+    # base_parameters, which are fuzzed)
+    "ExcitationDesign", "Measurement", "FilteredData", "Estimate", "BaseParameters",
 }
 
 

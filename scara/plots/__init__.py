@@ -35,6 +35,7 @@ from .control import (
     figure_slider, payload_estimate_figure, payload_sweep_figure, robust_term_figure, saturation_figure,
     steady_state_figure, torque_figure, tuning_figure,
 )
+from .identification import error_size_figure, excitation_figure, validation_figure
 from .course import course_figure
 from .frames import frames_figure
 from .animation import clik_animation, control_animation, course_animation, frame_indices, trajectory_animation

@@ -82,3 +82,48 @@ def test_heavy_sag_and_slider_gain(params):
     assert math.isclose(r["sag_mm"], 1e3 * m * G0 / 1e4, rel_tol=1e-12)
     k = round(10 * r["k_step"])
     assert m * G0 / 10 ** (k / 10) <= s < m * G0 / 10 ** ((k - 1) / 10)
+
+
+@pytest.mark.parametrize("params", drawn("ex-dyn-encoder"))
+def test_encoder_steps_against_readings(params):
+    """The RMS error of readings of uniformly spread positions, rounded by the package's quantiser: e^2 of a
+    rounding error uniform over ± half a step has a relative standard deviation sqrt(4/5), so the RMS of n of
+    them has a relative standard error sqrt(4/5) / (2 sqrt(n)); within 4 of those. The speed error is reached:
+    two readings half a step off in opposite directions."""
+    from scara.identification import quantise
+    r = solve("ex-dyn-encoder", params)
+    step = r["step_urad"] * 1e-6
+    assert math.isclose(step * 2 ** params["bits"], 2 * math.pi, rel_tol=1e-12)
+    x = np.random.default_rng(int(params["bits"])).uniform(-3.0, 3.0, (100_000, 4))
+    rms = float(np.sqrt(np.mean((quantise(x, np.full(4, step)) - x) ** 2)))
+    assert abs(rms / (r["rms_urad"] * 1e-6) - 1) < 4 * math.sqrt(0.8) / (2 * math.sqrt(x.size))
+    # just below half a step (rounded down) and just above three and a half (rounded up): 3.0002 steps apart,
+    # read 4 steps apart
+    a, b = (np.array([[k, 0.0, 0.0, 0.0]]) * step for k in (0.4999, 3.5001))
+    worst = abs((quantise(b, np.full(4, step)) - quantise(a, np.full(4, step)))[0, 0] - (b - a)[0, 0]) / 1e-3
+    assert worst <= r["speed_err"] * (1 + 1e-9) and worst > 0.99 * r["speed_err"]
+
+
+@pytest.mark.parametrize("params", drawn("ex-dyn-record"))
+def test_record_length_gives_the_interval(params):
+    """Identifying from the predicted number of whole periods gives a half-width of m3 no wider than asked, up to
+    the scatter of the noise level's estimate (relative standard error about 1 / sqrt(2 N), N >= 380 samples:
+    within 4 of those)."""
+    from scara.identification import EXAMPLE_SEED, draw_arm, identify, measure, optimise_excitation
+    r = solve("ex-dyn-record", params)
+    assert math.isclose(r["duration_s"], 40.0 * (r["h40_g"] / params["target_g"]) ** 2, rel_tol=1e-12)
+    exc = optimise_excitation().excitation
+    est, _ = identify(measure(draw_arm(EXAMPLE_SEED), exc.reference(int(r["periods"])), seed=1))
+    half_g = 1e3 * 0.5 * (est.interval[0, 1] - est.interval[0, 0])
+    assert half_g <= params["target_g"] * (1 + 4 / math.sqrt(2 * 380))
+    assert r["periods"] * exc.period >= r["duration_s"] > (r["periods"] - 1) * exc.period
+
+
+@pytest.mark.parametrize("params", drawn("ex-dyn-weighing"))
+def test_weighing_finds_the_payload(params):
+    """The payload put on the arm lies within its interval (four half-widths, far beyond the 95 % level), and
+    payload_from_pi misses it by the quill's own error, m_l3 - 10 kg."""
+    from scara.identification import EXAMPLE_SEED, draw_arm
+    r = solve("ex-dyn-weighing", params)
+    assert abs(r["payload_kg"] - params["m_L"]) < 4 * r["half_g"] * 1e-3
+    assert abs((r["nominal_kg"] - r["payload_kg"]) - (draw_arm(EXAMPLE_SEED).m_l3 - 10.0)) < 0.01

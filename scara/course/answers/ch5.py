@@ -8,6 +8,8 @@ from scara import (PDGravityController, ScaraParams, TorqueController, clik2, fr
                    inverse_dynamics, joint_setpoint, payload_from_pi, reference_trajectory, regressor, simulate)
 from scara.course.answers import solves
 from scara.errors import ScaraError
+from scara.identification import (CUTOFF, EXAMPLE_SEED, draw_arm, encoder_resolution, identify, measure,
+                                  optimise_excitation)
 
 #: the payloads the course's arm is given (the live panel's and fig-ch5-inertia-elbow's slider: 0 to 20 kg)
 PAYLOAD_MAX = 20.0
@@ -145,3 +147,63 @@ def dyn_heavy(m_L: float, sag_max_mm: float) -> dict:
         out[f"kp_{k}"] = 10 ** (k / 10)
         out[f"sag_{k}_mm"] = 1e3 * sag_at(10 ** (k / 10))
     return out
+
+
+@solves("ex-dyn-encoder")
+def dyn_encoder(bits: float) -> dict:
+    """An encoder of 2^bits counts per revolution read every 1 ms: its step, the RMS error of a reading (uniform
+    over ± half a step) and the largest error of a first and a second difference of readings."""
+    if not (float(bits).is_integer() and 8 <= bits <= 30):
+        raise ScaraError(f"exercise ex-dyn-encoder: {bits} bits is not a whole number from 8 to 30")
+    step = float(encoder_resolution(2 ** int(bits))[0])
+    dt = 1e-3
+    return {"step_urad": 1e6 * step, "rms_urad": 1e6 * step / math.sqrt(12.0), "speed_err": step / dt,
+            "acc_err": 2 * step / dt ** 2}
+
+
+@lru_cache(maxsize=1)
+def _excitation():
+    """The exciting trajectory of the chapter (the defaults of ``optimise_excitation``)."""
+    return optimise_excitation().excitation
+
+
+@lru_cache(maxsize=32)
+def _identified(m_L: float, periods: int, seed: int):
+    """The weighted estimate of the chapter's arm (``draw_arm(EXAMPLE_SEED)``) carrying ``m_L`` instead of its own
+    payload (None: its own), from ``periods`` periods of the chapter's excitation, noise drawn with ``seed``, the
+    chapter's cut-off."""
+    arm = draw_arm(EXAMPLE_SEED)
+    arm = arm if m_L is None else arm.replace(m_L=m_L)
+    return identify(measure(arm, _excitation().reference(periods), seed=seed), CUTOFF)[0]
+
+
+def _half(est, j: int = 0) -> float:
+    """The half-width of the 95 % interval of entry ``j`` of an estimate."""
+    return float(0.5 * (est.interval[j, 1] - est.interval[j, 0]))
+
+
+@solves("ex-dyn-record")
+def dyn_record(target_g: float) -> dict:
+    """The record length that the 1/sqrt(N) law predicts for a 95 % interval of m3 of ± ``target_g`` g, from the
+    chapter's 40 s experiment (4 periods, noise seed 1), and the whole periods of 10 s that covers."""
+    if not 0.5 <= target_g <= 2.0:
+        raise ScaraError(f"exercise ex-dyn-record: ± {target_g} g is outside 0.5 to 2 g (the 40 s experiment "
+                         "gives about ± 2 g; a narrower interval needs minutes of data)")
+    h40 = _half(_identified(None, 4, 1))
+    duration = 40.0 * (1e3 * h40 / target_g) ** 2
+    return {"duration_s": duration, "h40_g": 1e3 * h40,
+            "periods": float(math.ceil(duration / _excitation().period - 1e-9))}
+
+
+@solves("ex-dyn-weighing")
+def dyn_weighing(m_L: float) -> dict:
+    """The chapter's arm carrying ``m_L``, identified with it (noise seed 1) and without it (seed 2) over 4
+    periods: the payload as the difference of the two m3, its 95 % interval, and what payload_from_pi says."""
+    if not 0.0 <= m_L <= 10.0:
+        raise ScaraError(f"exercise ex-dyn-weighing: a payload of {m_L} kg is outside the 0 to 10 kg of the "
+                         "identification's arm")
+    loaded, empty = _identified(float(m_L), 4, 1), _identified(0.0, 4, 2)
+    quantile = _half(loaded) / float(loaded.std[0])
+    return {"payload_kg": float(loaded.pi[0] - empty.pi[0]),
+            "half_g": 1e3 * quantile * math.hypot(loaded.std[0], empty.std[0]),
+            "nominal_kg": float(payload_from_pi(loaded.pi)), "ml3": float(draw_arm(EXAMPLE_SEED).m_l3)}

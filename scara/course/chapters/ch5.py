@@ -60,4 +60,33 @@ EXERCISES = (
                              "", 0.01, absolute=True)),
              note="The sag is m_L g0 / K_P3 (the controller compensates the quill only); the gain must be at least "
                   "m_L g0 / sag_max, and the first slider value 10^(k/10) above it is the answer."),
+    Exercise("ex-dyn-encoder", DOC,
+             params=(Param("bits", 17.0, "", ".0f", "encoder counts per revolution, as a power of 2",
+                           low=12.0, high=20.0, step=1.0),),
+             answers=(Answer("step_urad", "encoder step 2π / 2^bits", "µrad", 0.005),
+                      Answer("rms_urad", "RMS error of a reading (uniform over ± half a step)", "µrad", 0.01),
+                      Answer("speed_err", "largest error of a speed from two consecutive readings 1 ms apart",
+                             "rad/s", 0.01)),
+             note="A reading is off by at most half a step, uniformly, so its RMS error is step / √12; two "
+                  "readings differ from the true difference by up to one step, so a speed from them errs by up "
+                  "to step / T, and a second difference by up to 2 step / T²: raw readings must be filtered "
+                  "before they are differentiated."),
+    Exercise("ex-dyn-record", DOC,
+             params=(Param("target_g", 1.0, "g", ".2f", "half-width of the 95 % interval of m3 wanted",
+                           low=1.0, high=2.0, step=0.25),),
+             answers=(Answer("duration_s", "record length predicted by the 1/√N law from the 40 s experiment",
+                             "s", 0.02),),
+             note="The interval's half-width falls like 1/√N: 40 s × (h_40 / target)² of data, h_40 the half-width "
+                  "of the page's 40 s experiment; rounded up to whole periods of 10 s, the identification gives a "
+                  "half-width close to the target."),
+    Exercise("ex-dyn-weighing", DOC,
+             params=(Param("m_L", 2.5, "kg", ".1f", "payload put on the arm of the page",
+                           low=0.5, high=10.0, step=0.5),),
+             answers=(Answer("payload_kg", "payload from two identifications, with and without it", "kg", 0.01,
+                             absolute=True),
+                      Answer("half_g", "half-width of its 95 % interval", "g", 0.02),
+                      Answer("nominal_kg", "payload_from_pi of the loaded estimate (nominal quill mass)", "kg", 0.01,
+                             absolute=True)),
+             note="m3 = m_l3 + m_L: the difference of the two estimates of m3 is the payload; payload_from_pi "
+                  "subtracts the nominal m_l3 = 10 kg, and this arm's quill differs from it."),
 )
