@@ -38,3 +38,4 @@ from .control import (
 from .course import course_figure
 from .frames import frames_figure
 from .animation import clik_animation, control_animation, course_animation, frame_indices, trajectory_animation
+from .interaction import contact_force_figure, peg_animation, stiffness_slider_figure
