@@ -23,6 +23,13 @@ def _contact_run(result, what: str):
     return result
 
 
+def _last(t, window: float) -> np.ndarray:
+    """The samples of ``t`` (N,) within the last ``window`` s of the run, and at least the last one."""
+    last = np.asarray(t) >= t[-1] - window + 1e-12
+    last[-1] = True
+    return last
+
+
 def settling_time(result, band: float = 0.05, window: float = 1.0) -> float:
     """The time (s) from the first touch until the normal force ``-h_z`` stays within ``band`` (relative, default
     5 %) of its mean over the last ``window`` s of the run: NaN when the tool never touches, and the whole rest of
@@ -43,7 +50,7 @@ def settling_time(result, band: float = 0.05, window: float = 1.0) -> float:
         return float("nan")
     fn = -np.asarray(result.force)[:, 2]
     t = np.asarray(result.t)
-    final = fn[t >= t[-1] - window + 1e-12].mean()
+    final = fn[_last(t, window)].mean()
     k0 = int(np.argmax(touching))
     out = np.flatnonzero(np.abs(fn[k0:] - final) > band * abs(final))
     if out.size == 0:
@@ -61,10 +68,12 @@ def law_comparison(runs: dict, force: float = 10.0, window: float = 1.0, band: f
     if not isinstance(runs, dict) or not runs:
         raise ScaraError(f"runs must be a non-empty dict {{name: run of simulate_contact}}, got {runs!r:.80}")
     force = check_positive(force, "force")
+    window = check_positive(window, "window")
+    band = check_positive(band, "band")
     rows = []
     for name, run in runs.items():
         _contact_run(run, "law_comparison")
-        last = run.t >= run.t[-1] - window + 1e-12
+        last = _last(run.t, window)
         tr = contact_transition(run)
         rows.append({"law": name, "force_error": float(force - run.normal_force[last].mean()),
                      "penetration": float(1e3 * (run.surface.height - run.x[last, 2]).mean()),
