@@ -73,7 +73,8 @@ def stiffness_slider_figure(sweep: dict, depth: float, title: str = "Steady forc
     """The steady normal force (N) against the surface's stiffness ``k_e`` (N/m, log axis) of compliance control
     held ``depth`` m below the surface: the formula's curve and the simulated runs (markers) of
     :func:`scara.interaction.stiffness_sweep`, one gain ``K_P,z`` at a time (a static slider, plotly steps), with
-    the two limits of the formula, ``K_P,z depth`` (a stiff surface) and ``k_e depth`` (a stiff tool), dotted.
+    the two limits of the formula, ``K_P,z depth`` (a stiff surface, dotted) and ``k_e depth`` (a stiff tool,
+    dashed); each step scales the force axis to its gain (up to 1.15 ``K_P,z depth``).
 
     Limits: at most 121 gains (``MAX_STEPS``); a sweep without its keys raises :class:`ScaraError`."""
     keys = ("gains", "stiffness", "simulated", "dense", "dense_formula")
@@ -98,14 +99,17 @@ def stiffness_slider_figure(sweep: dict, depth: float, title: str = "Steady forc
                                  visible=shown, line=dict(color="#999999", width=1.2, dash="dash")))
     n = len(fig.data)
     titles = [f"{title}<br>K_P,z = {kp:g} N/m, {1e3 * depth:g} mm deep" for kp in gains]
+    # each gain on its own scale: up to a little above its stiff-surface limit K_P,z depth
+    tops = [round(1.15 * float(kp) * depth, 4) for kp in gains]
     steps = [dict(label=f"{kp:g}", method="update",
-                  args=[{"visible": [per * i <= j < per * (i + 1) for j in range(n)]}, {"title.text": titles[i]}])
+                  args=[{"visible": [per * i <= j < per * (i + 1) for j in range(n)]},
+                        {"title.text": titles[i], "yaxis.range": [0.0, tops[i]]}])
              for i, kp in enumerate(gains)]
-    finish_layout(fig, titles[0], height, bottom=120)
-    top = float(np.max(gains) * depth)
-    fig.update_layout(sliders=[slider(steps, "K_P,z (N/m) = ")])
+    finish_layout(fig, titles[0], height, bottom=130)
+    # the slider's readout clear of the axis title under the log ticks (10^4 stands taller than a tick)
+    fig.update_layout(sliders=[slider(steps, "K_P,z (N/m) = ", pad_top=56)])
     fig.update_xaxes(type="log", exponentformat="power", title_text="k_e (N/m)")
-    fig.update_yaxes(title_text="−h_z at rest (N)", range=[0.0, 1.05 * top])
+    fig.update_yaxes(title_text="−h_z at rest (N)", range=[0.0, tops[0]])
     return fig
 
 
@@ -174,5 +178,6 @@ def peg_animation(frames: dict, scale: float = 0.5, title: str = "Peg in hole (s
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
     fig.update_yaxes(title_text="−h_z (N)", row=2, col=1)
     finish_layout(fig, title, height, bottom=_BOTTOM)
-    fig.update_layout(**play_controls(t, duration=FRAME_MS))
+    # the peg is a filled shape, which plotly redraws only on a full redraw
+    fig.update_layout(**play_controls(t, redraw=True, duration=FRAME_MS))
     return fig

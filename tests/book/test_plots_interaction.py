@@ -68,6 +68,7 @@ def test_stiffness_slider_shows_formula_and_runs_one_gain_per_step(sweep):
     for i, s in enumerate(steps):
         assert s.args[0]["visible"] == [4 * i <= j < 4 * (i + 1) for j in range(8)]
         assert "K_P,z = " + steps[i].label + " N/m" in s.args[1]["title.text"]
+        assert s.args[1]["yaxis.range"] == [0.0, pytest.approx(1.15 * sweep["gains"][i] * 2e-3)]
         assert all(len(ln) <= 45 for ln in title_lines(s.args[1]["title.text"]))
         formula, sim, stiff, soft = fig.data[4 * i: 4 * (i + 1)]
         assert np.allclose(formula.y, sweep["dense_formula"][i], atol=1e-4)
@@ -86,6 +87,8 @@ def test_peg_animation_plays_and_puts_the_peg_where_the_run_was(frames):
     check_axis_titles_with_units("peg", fig)
     labels = [b.label for b in fig.layout.updatemenus[0].buttons]
     assert any("Play" in s for s in labels) and any("Pause" in s for s in labels)
+    # the filled peg moves only on a full redraw
+    assert fig.layout.updatemenus[0].buttons[0].args[1]["frame"]["redraw"] is True
     steps = fig.layout.sliders[0].steps
     assert len(fig.frames) == len(frames["t"]) == len(steps)
     assert [s.args[0][0] for s in steps] == [f.name for f in fig.frames]
