@@ -568,6 +568,7 @@ TABLE = [
         scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),
         scalar("hold", 0, 0, True, valid=st.sampled_from([0.05, 0.1])), small_int("points", 2, 50)],
           examples=EXPENSIVE_EXAMPLES),
+    Entry("interaction", "force_loop_poly", lambda: [_contact_controller_arg(laws=(3,)), _surface_arg()]),
     Entry("interaction", "force_loop_bounds", lambda: [_contact_controller_arg(laws=(3,)), _surface_arg(),
                                                        scalar("dt", 5e-4, 2e-3, True)]),
 ]

@@ -12,7 +12,8 @@ import pytest
 import scara
 from scara.control import law_cost, replay_law
 from scara.interaction import (ComplianceController, ForceController, ForceSensor, ImpedanceController, Surface,
-                               approach_run, force_loop_bounds, law_comparison, settling_time, stiffness_sweep)
+                               approach_run, force_loop_bounds, force_loop_poly, law_comparison, settling_time,
+                               stiffness_sweep)
 from scara.interaction.stability import sampled_radius, z_axis
 
 
@@ -84,6 +85,11 @@ def test_force_loop_bounds_are_routh_and_the_unit_circle():
         return np.roots([1.0, a2, KP * (1 + KF * k + ki * d), KP * ki * k]).real.max()
 
     assert max_real(0.999 * b["routh"]) < 0 < max_real(1.001 * b["routh"])       # the cubic's roots cross there
+    assert np.allclose(force_loop_poly(ForceController(K_I=3e-3), Surface(stiffness=3e4, damping=20.0)),
+                       [1.0, 70.0 + 2500.0 * 2e-5 * 20.0, 2500.0 * (1 + 2e-5 * 3e4 + 3e-3 * 20.0), 2500.0 * 3e-3 * 3e4],
+                       rtol=1e-14)
+    with pytest.raises(scara.ScaraError, match="force_loop_poly takes a ForceController"):
+        force_loop_poly(ComplianceController())
     m, c = z_axis()
 
     def radius(ki):

@@ -1,8 +1,8 @@
 """The figures chapter 7 compares the interaction laws by, and the sweeps its figures draw: how fast a run settles
 on the surface, the comparison table of the five laws (:func:`law_comparison`), the steady force of compliance
 control against the surface's stiffness (:func:`stiffness_sweep`, formula (eq-int-equilibrium) beside the
-simulation) and the force loop's stability bound (:func:`force_loop_bounds`, (eq-int-force-routh) beside the
-sampled loop's).
+simulation) and the force loop's polynomial and stability bound (:func:`force_loop_poly`,
+:func:`force_loop_bounds`, (eq-int-force-routh) beside the sampled loop's).
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from .laws import ComplianceController, ForceController
 from .stability import sampled_radius, z_axis
 from .steady import _surface, approach_reference, contact_transition, elastic_equilibrium
 
-__all__ = ["settling_time", "law_comparison", "stiffness_sweep", "force_loop_bounds"]
+__all__ = ["settling_time", "law_comparison", "stiffness_sweep", "force_loop_poly", "force_loop_bounds"]
 
 
 def _contact_run(result, what: str):
@@ -136,6 +136,24 @@ def stiffness_sweep(gains, stiffnesses, depth: float = 2e-3, at=(0.4, 0.1), lift
     return out
 
 
+def force_loop_poly(controller: ForceController | None = None, surface: Surface | None = None) -> np.ndarray:
+    """The coefficients (4,) of the continuous-time characteristic polynomial of force control pressing on
+    ``surface`` along z, highest power first, (eq-int-force-poly):
+    ``s^3 + (K_D + K_P K_F d_e) s^2 + K_P (1 + K_F k_e + K_I d_e) s + K_P K_I k_e`` (the inner loop's per-mass
+    ``K_P``, ``K_D``; ``np.roots`` gives its poles, 1/s).
+
+    >>> force_loop_poly().round(6).tolist()
+    [1.0, 72.5, 3750.0, 100000.0]
+    """
+    law = ForceController() if controller is None else controller
+    if not isinstance(law, ForceController):
+        raise ScaraError(f"force_loop_poly takes a ForceController, got {type(law).__name__}")
+    s = _surface(surface)
+    KP, KD, KF, KI = law.K_P[2], law.K_D[2], law.K_F[2], law.K_I[2]
+    k, d = s.stiffness, s.damping
+    return np.array([1.0, KD + KP * KF * d, KP * (1.0 + KF * k + KI * d), KP * KI * k])
+
+
 def force_loop_bounds(controller: ForceController | None = None, surface: Surface | None = None,
                       dt: float = 1e-3, plant=None) -> dict:
     """The largest integral gain ``K_I`` (m/(N s)) of force control (:class:`~.laws.ForceController`, its other
@@ -155,8 +173,8 @@ def force_loop_bounds(controller: ForceController | None = None, surface: Surfac
     dt = check_positive(dt, "dt")
     m, c = z_axis(plant)
     k, d = s.stiffness, s.damping
-    KP, KD, KF = law.K_P[2], law.K_D[2], law.K_F[2]
-    a2 = KD + KP * KF * d
+    KF = law.K_F[2]
+    a2 = force_loop_poly(law, s)[1]
     if not k > a2 * d:
         raise ScaraError(f"k_e = {k:g} N/m must exceed (K_D + K_P K_F d_e) d_e = {a2 * d:g} N/m for the integral "
                          f"gain to be bounded")

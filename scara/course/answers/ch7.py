@@ -4,7 +4,7 @@ import numpy as np
 from scara.course.answers import solves
 from scara.errors import ScaraError
 from scara.interaction import (ForceController, ForceSensor, Hole, Surface, approach_run, elastic_equilibrium,
-                               force_equilibrium, force_loop_bounds, insertion_summary, peg_in_hole,
+                               force_equilibrium, force_loop_bounds, force_loop_poly, insertion_summary, peg_in_hole,
                                stiffness_sweep)
 
 
@@ -45,9 +45,8 @@ def int_force_loop(K_I: float) -> dict:
     b = force_loop_bounds(law, s)
     if not b["radius"] < 1.0:
         raise ScaraError(f"exercise ex-int-force-loop: K_I = {K_I} m/(N s) makes the sampled loop unstable")
-    KP, KD, KF, k, d = law.K_P[2], law.K_D[2], law.K_F[2], s.stiffness, s.damping
-    roots = np.roots([1.0, KD + KP * KF * d, KP * (1.0 + KF * k + K_I * d), KP * K_I * k])
-    slowest = float(-np.max(roots.real))
+    KF, k = law.K_F[2], s.stiffness
+    slowest = float(-np.max(np.roots(force_loop_poly(law, s)).real))
     return {"tau_ms": float(1e3 * (1.0 + KF * k) / (K_I * k)), "routh": b["routh"], "sampled": b["sampled"],
             "slowest_ms": 1e3 / slowest, "radius": b["radius"]}
 
