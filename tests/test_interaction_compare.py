@@ -106,6 +106,21 @@ def test_force_loop_bounds_are_routh_and_the_unit_circle():
         force_loop_bounds(law, Surface(stiffness=100.0))
 
 
+def test_the_force_loop_settles_at_its_slowest_pole_not_at_the_first_order_estimate():
+    """The book's force control: the cubic's slowest poles are a damped pair whose envelope decays in about 63 ms,
+    the sampled loop's largest eigenvalue gives the same rate, and ForceController's docstring states both."""
+    law, surface = ForceController(), Surface()
+    roots = np.roots(force_loop_poly(law, surface))
+    slow = roots[np.argmax(roots.real)]
+    assert abs(slow.imag) > 0 and slow.real == pytest.approx(-15.9, abs=0.05) and abs(slow.imag) == pytest.approx(46.9, abs=0.05)
+    m, c = z_axis()
+    r = sampled_radius(law.z_loops(m, c, 2e4, 50.0, 1e-3)["contact"], m, c, 2e4, 50.0, 1e-3)
+    assert -1e-3 / math.log(r) == pytest.approx(-1.0 / slow.real, rel=0.02)     # the sampled loop's rate
+    first_order = (1 + 2e-5 * 2e4) / (2e-3 * 2e4)
+    assert -1.0 / slow.real > 1.7 * first_order
+    assert "63 ms" in ForceController.__doc__ and "-15.9 +- 46.9j" in ForceController.__doc__
+
+
 def test_replay_refuses_a_law_that_reads_the_force_sensor():
     ideal = ForceSensor(noise=0.0, bias=(0.0, 0.0, 0.0))
     run = approach_run(ImpedanceController(), Surface(), ideal, move=0.2, hold=0.1)
