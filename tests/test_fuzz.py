@@ -606,6 +606,20 @@ TABLE = [
     Entry("interaction", "peg_frames", lambda: [_peg_result_arg(), small_int("every", 1, 100),
                                                 scalar("peg_radius", 1e-3, 1e-2, True),
                                                 scalar("peg_length", 1e-2, 0.1, True)]),
+    Entry("interaction", "settling_time", lambda: [_contact_result_arg(), scalar("band", 0.01, 0.5, True),
+                                                   scalar("window", 0.01, 0.1, True)]),
+    Entry("interaction", "law_comparison", lambda: [
+        Arg("runs", st.just(3).map(lambda i: {"run": _contact_objects()[i]}),
+            st.one_of(st.deferred(F.bad_results), st.sampled_from(BAD_TYPES + ({},)))),
+        scalar("force", 1, 20, True), scalar("window", 0.01, 0.1, True), scalar("band", 0.01, 0.5, True)]),
+    Entry("interaction", "stiffness_sweep", lambda: [
+        vector("gains", 1, 1e3, 2e4), vector("stiffnesses", 1, 1e3, 1e5), scalar("depth", 1e-4, 3e-3, True),
+        scalar("move", 0, 0, True, valid=st.sampled_from([0.1, 0.2])),
+        scalar("hold", 0, 0, True, valid=st.sampled_from([0.05, 0.1])), small_int("points", 2, 50)],
+          examples=EXPENSIVE_EXAMPLES),
+    Entry("interaction", "force_loop_poly", lambda: [_contact_controller_arg(laws=(3,)), _surface_arg()]),
+    Entry("interaction", "force_loop_bounds", lambda: [_contact_controller_arg(laws=(3,)), _surface_arg(),
+                                                       scalar("dt", 5e-4, 2e-3, True)]),
 ]
 
 

@@ -18,6 +18,11 @@ from ..params import ScaraParams
 __all__ = ["LAW_SIGNATURE", "control_law", "Controller", "OK", "LAW_FAILED", "DIVERGED", "SINGULAR_INERTIA",
            "JOINT_LIMIT", "NOT_FINITE", "law_arrays", "check_law_bounds"]
 
+#: The name of the scratch row into which the contact engine (:func:`scara.interaction.simulate_contact`) writes
+#: the force sensor's reading ``[h_x, h_y, h_z, 0]`` (N) before each call of a law that declares it in its
+#: ``work_layout``; a replay without the recorded readings cannot give such a law what it read.
+MEASURED_FORCE = "measured_force"
+
 #: The status codes of a run, written in ``info[0]`` by the engine's loop. ``OK`` is also what a law returns
 #: when all is well (a law's own failure codes are any other integer, e.g. those of :mod:`scara.control`).
 #: ``JOINT_LIMIT``: the quill ``d3`` left its stroke ``[d3_min, d3_max]`` (the plant models no end stop).

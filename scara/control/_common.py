@@ -18,7 +18,7 @@ from ..errors import ScaraError, ShapeError, UnstableError, as_array, check_coun
 from ..gains import gain_vector
 from ..params import ScaraParams
 from .._simulate import OK, Controller, _compiled_law
-from .._simulate.interface import check_law_bounds, law_arrays
+from .._simulate.interface import MEASURED_FORCE, check_law_bounds, law_arrays
 
 __all__ = [
     "TAU_MAX", "MAX_ERROR", "BOUND_FIELDS", "OK", "TORQUE_BOUND", "ERROR_BOUND", "SINGULAR_JACOBIAN", "FAILURE_CAUSES",
@@ -179,9 +179,14 @@ def replay_law(controller, result, n: int | None = None):
     ``controller.initial_state()``, with the arrays the engine would give it
     (:func:`scara._simulate.interface.law_arrays`, checked by the same trial call); its torques (n, 4) must
     equal ``result.tau`` when the same controller produced the run. Used to time the law (:func:`law_cost`) and
-    to check it against another implementation. The run's ``reference_kind`` must be the controller's.
+    to check it against another implementation. The run's ``reference_kind`` must be the controller's. A law that
+    reads the force sensor (its ``work_layout`` declares the row ``MEASURED_FORCE``, the interaction laws of
+    chapter 7) is refused with a :class:`~scara.ScaraError`: the replay does not feed the readings.
     """
     _check_controller(controller)
+    if MEASURED_FORCE in getattr(getattr(controller, "work_layout", None), "names", ()):
+        raise ScaraError(f"replay_law cannot replay {controller.name}: its law reads the force sensor (the scratch row "
+                         f"{MEASURED_FORCE!r}), which a replay without the recorded readings would leave at zero")
     run = _run_series(result, {"t": (), "q": (4,), "qd": (4,), "reference": (12,)})
     _check_kind(controller, result)
     dt = check_positive(getattr(result, "dt", None), "result.dt")

@@ -39,6 +39,7 @@ DOCNAMES = {
     "04_clik": "ch4",
     "05_dynamics": "ch5",
     "06_control": "ch6",
+    "07_interaction": "ch7",
     "appendix_verification": "appendix",
 }
 

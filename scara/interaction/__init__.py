@@ -8,11 +8,11 @@ hole for a peg, a wrist force sensor, the closed loop in contact and the interac
 Modules: :mod:`.environment` (the surface, the hole, the sensor, the contact force), :mod:`.plant` (the plant in
 contact), :mod:`.engine` (:func:`simulate_contact`), :mod:`.stability` (the sampled loop along z),
 :mod:`.laws` (the five controllers), :mod:`.steady` (steady states and contact transitions), :mod:`.peg`
-(peg-in-hole).
+(peg-in-hole), :mod:`.compare` (the comparison of the laws, the sweeps of the chapter's figures).
 """
 from .._lazy import public_names as _public_names
 
 _EAGER = ()
-_LAZY = ("environment", "engine", "laws", "steady", "peg")
+_LAZY = ("environment", "engine", "laws", "steady", "peg", "compare")
 
 __all__, __getattr__, __dir__ = _public_names(__name__, _EAGER, _LAZY, ())

@@ -27,7 +27,8 @@ from .._simulate.engine import (
 )
 from .._simulate.engine import _before_law, _loop_start
 from .._simulate.interface import (
-    DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
+    DIVERGED, JOINT_LIMIT, LAW_FAILED, MEASURED_FORCE, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law,
+    check_law_bounds, law_arrays,
 )
 from .._simulate.plant import _plant_acceleration, _plant_constants, _rk4_step
 from .._simulate.result import SimulationResult, _pose_error
@@ -41,9 +42,6 @@ from .plant import contact_acceleration, contact_rk4_step, tool_state
 
 __all__ = ["simulate_contact", "ContactResult", "MEASURED_FORCE"]
 
-#: The name of the scratch row into which the engine writes the sensor's reading ``[h_x, h_y, h_z, 0]`` (N)
-#: before each call of a law that declares it in its ``work_layout``.
-MEASURED_FORCE = "measured_force"
 
 if _compile.COMPILED:
     _t = _compile.numba_types

@@ -39,3 +39,4 @@ from .identification import error_size_figure, excitation_figure, validation_fig
 from .course import course_figure
 from .frames import frames_figure
 from .animation import clik_animation, control_animation, course_animation, frame_indices, trajectory_animation
+from .interaction import contact_force_figure, peg_animation, stiffness_slider_figure

@@ -182,7 +182,7 @@ ANIMATIONS = """() => Array.from(document.querySelectorAll('.plotly-graph-div'))
 
 
 @pytest.mark.parametrize("page", ["book/intro.html", "book/03_trajectory.html", "book/04_clik.html",
-                                  "book/06_control.html"])
+                                  "book/06_control.html", "book/07_interaction.html"])
 def test_animations_play(page, server, browser):
     """Every animation of the page plays offline: pressing its Play button makes the frames advance; a
     screenshot of each, taken while it plays, goes to ``_build/screenshots/``. The page stays under 3 MB."""
@@ -258,7 +258,7 @@ FIGURE_COLOURS = """() => Array.from(document.querySelectorAll('.js-plotly-plot'
 })"""
 
 
-@pytest.mark.parametrize("page", ["book/03_trajectory.html", "book/06_control.html"])
+@pytest.mark.parametrize("page", ["book/03_trajectory.html", "book/06_control.html", "book/07_interaction.html"])
 def test_figures_follow_dark_mode(page, server, browser):
     """With the theme in dark mode every figure drops its white background, writes its text in a light colour
     and lightens trace colours too dark to see; switching back to light restores the figures. Screenshots of

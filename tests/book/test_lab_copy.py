@@ -191,6 +191,7 @@ EDITS = {
     "04_clik.ipynb": ("traj = reference_trajectory()  ", "traj = reference_trajectory(dt=2e-3)  "),
     "05_dynamics.ipynb": ("p5 = p.with_payload(5.0)", "p5 = p.with_payload(3.0)"),
     "06_control.ipynb": ("plant = model.with_payload(5.0)", "plant = model.with_payload(2.0)"),
+    "07_interaction.ipynb": ("surface = Surface()  #", "surface = Surface(stiffness=3e4)  #"),
     "appendix_verification.ipynb": ("h = 1e-6", "h = 1e-5"),
 }
 

@@ -110,7 +110,7 @@ ONE_MEANING = r"""async () => {
   const chapter = num ? parseInt(num) : null;
   const isNotation = here === 'notation.html';
   if (!isNotation && chapter === null) return out;
-  const ALL = [1, 2, 3, 4, 5, 6];
+  const ALL = [1, 2, 3, 4, 5, 6, 7];
   const chaptersIn = (s) => {
     const found = new Set();
     const re = /chapters?\s+((?:\d+(?:\s*(?:,|and|to)\s*)?)+)/g;

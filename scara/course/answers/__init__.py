@@ -12,7 +12,7 @@ import importlib
 #: label -> the function that answers it
 SOLVERS: dict = {}
 
-MODULES = ("ch1", "ch2", "ch3", "ch4", "ch5", "ch6", "appendix")
+MODULES = ("ch1", "ch2", "ch3", "ch4", "ch5", "ch6", "ch7", "appendix")
 
 
 def solves(label: str):
