@@ -47,9 +47,12 @@ UNDEFINED_TEXT = "n/a (not defined for your inputs: see the note of the hidden c
 
 def glue(name: str, value, display: bool = True):
     """Record ``value`` under ``name`` (:data:`GLUED`) and, where myst-nb is installed (the book's build), glue it
-    for the page (``myst_nb.glue(name, value, display)``); without myst-nb, ``display=True`` shows the value."""
+    for the page (``myst_nb.glue(name, value, display)``); without myst-nb, ``display=True`` shows the value. A
+    numpy scalar is glued as the Python number it holds, so the page reads its text as a number."""
     if not isinstance(name, str) or not name:
         raise ValueError(f"a glued value needs a name (a non-empty string), got {name!r}")
+    if type(value).__module__ == "numpy" and hasattr(value, "item") and getattr(value, "ndim", None) == 0:
+        value = value.item()  # a numpy scalar as a plain number: its text is '2.87', never 'np.float64(2.87)'
     GLUED[name] = value
     try:
         from myst_nb import glue as myst_glue  # noqa: PLC0415 - the book's toolchain, absent from the course's install

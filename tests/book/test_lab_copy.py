@@ -23,6 +23,7 @@ import sys
 import zipfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -133,6 +134,17 @@ def test_glued_values_print_as_the_book_prints_them():
     with pytest.raises(KeyError, match="'never_glued'.*run the chapter's cells above"):
         glued("never_glued")
     assert GLUED["test_speed"] == 0.05625
+
+
+def test_a_numpy_scalar_is_glued_as_a_plain_number():
+    """A numpy scalar's text is 'np.float64(2.87...)' wherever the kernel has no formatter for it, which the book's
+    build cannot read as a number: glue stores the Python number it holds (an array stays an array)."""
+    glue("test_np_float", np.float64(2.5) / np.float64(3.0), display=False)
+    glue("test_np_int", np.int64(7), display=False)
+    glue("test_np_array", np.array([1.0, 2.0]), display=False)
+    assert type(GLUED["test_np_float"]) is float and GLUED["test_np_float"] == 2.5 / 3.0
+    assert type(GLUED["test_np_int"]) is int and GLUED["test_np_int"] == 7
+    assert isinstance(GLUED["test_np_array"], np.ndarray)
 
 
 def test_a_failing_check_prints_one_line_and_the_cell_goes_on(capsys):
