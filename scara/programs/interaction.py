@@ -97,13 +97,13 @@ _E_Z = ENVIRONMENT.offsets.height
 
 #: The output numbers: the set point's height above the surface (mm), the figures of the transition
 #: (``first_touch`` s, ``peak_force`` N, ``contact_losses``, ``bounced`` 0/1, ``final_force`` N), the steady force
-#: the formulas predict (N) and the error of the final force (N), the run's length (s), and the numbers a refusal
+#: the formulas predict (N) and the error of the final force (N), the run's start (0) and length (s), and the numbers a refusal
 #: names
 SCALARS = ArrayLayout(("target_mm", 1), ("first_touch", 1), ("peak_force", 1), ("contact_losses", 1), ("bounced", 1),
-                      ("final_force", 1), ("formula", 1), ("force_error", 1), ("duration", 1),
+                      ("final_force", 1), ("formula", 1), ("force_error", 1), ("t_start", 1), ("duration", 1),
                       ("fail_t", 1), ("fail_k", 1), ("fail_value", 1), ("fail_joint", 1), ("fail_d3", 1),
                       ("fail_v3", 1), ("fail_code", 1), ("d3_min", 1), ("d3_max", 1))
-(_O_TARGET, _O_TOUCH, _O_PEAK, _O_LOSSES, _O_BOUNCED, _O_FINAL, _O_FORMULA, _O_ERROR, _O_DURATION, _O_FAIL_T,
+(_O_TARGET, _O_TOUCH, _O_PEAK, _O_LOSSES, _O_BOUNCED, _O_FINAL, _O_FORMULA, _O_ERROR, _O_T0, _O_DURATION, _O_FAIL_T,
  _O_FAIL_K, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_FAIL_D3, _O_FAIL_V3, _O_FAIL_CODE, _O_D3_MIN, _O_D3_MAX) = SCALARS.offsets
 _SCALARS_SIZE = SCALARS.size
 
@@ -326,6 +326,9 @@ def interaction_program(inputs, data, out):
     :func:`interaction_outputs`. Returns 0 or the refusal code (:func:`interaction_refusals`)."""
     n = int(data[_H_N])
     at = int(data[_H_NOISE]) + 3 * n   # the scratch follows the data
+    if data.shape[0] < at + 22 * n:    # none: the move allocates its own
+        return interaction_core(inputs, data, out, np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 4)),
+                                np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
     q_out = data[at:at + 4 * n].reshape(n, 4)
     qd_out = data[at + 4 * n:at + 8 * n].reshape(n, 4)
     tau_out = data[at + 8 * n:at + 12 * n].reshape(n, 4)

@@ -1,0 +1,66 @@
+"""Live interaction panel of chapter 7: choose an interaction law, move its gains along z, the pressing force and
+the surface's stiffness; the approach from 2 cm above the surface and the press (3 s at 1 ms) is re-simulated and
+redrawn at once, by the panel's page program (the same compiled kernel in Jupyter and, translated, in the book's
+page)."""
+from __future__ import annotations
+
+from ..book import ahead
+from ..params import ScaraParams
+from ..plots.interaction_panel import PRESS_ROLES, press_bindings, press_build
+from ..plots.panels import Control, PageProgram, Panel, program_panel
+from ..programs.interaction import (INPUTS, LAWS, interaction_data, interaction_outputs, interaction_program,
+                                   interaction_refusals, interaction_scratch)
+from ._common import LivePanel
+
+__all__ = ["interaction_panel", "interaction_declaration"]
+
+_STIFFNESS_LAWS = ("compliance", "impedance", "admittance")
+_FORCE_LAWS = ("force", "parallel")
+
+
+def _log(name, label, default, low, high, readout, uses, unit=""):
+    """A log slider (step 0.01 decade) read by the laws ``uses``."""
+    return Control(name, "slider", label, default, low, high, 0.01, scale="log", unit=unit, readout=readout,
+                   applies_to=tuple(uses))
+
+
+def interaction_declaration(p=None, points: int = 600) -> Panel:
+    """The interaction panel as data (:class:`~scara.plots.panels.Panel`, made by
+    :func:`~scara.plots.panels.program_panel`); see :func:`interaction_panel`."""
+    p = ScaraParams.resolve(p)
+    controls = (
+        Control("law", "dropdown", "interaction law", "compliance", options=LAWS),
+        Control("force", "slider", "pressing force (N)", 10.0, 1.0, 50.0, 0.5, unit="N"),
+        _log("K_z", "stiffness along z, K_P / K_Pd (N/m)", 5000.0, 500.0, 1e5, ".0f", _STIFFNESS_LAWS, unit="N/m"),
+        _log("D_z", "damping along z, K_D / K_Dd (N s/m)", 650.0, 10.0, 3e4, ".0f", _STIFFNESS_LAWS, unit="N s/m"),
+        _log("M_z", "mass along z, M_d (kg)", 10.0, 0.5, 500.0, ".3g", ("impedance", "admittance"), unit="kg"),
+        _log("K_F", "force gain K_F (m/N)", 2e-5, 1e-7, 1e-3, ".2e", _FORCE_LAWS, unit="m/N"),
+        _log("K_I", "force integral gain K_I (m/(N s))", 2e-3, 1e-5, 1.0, ".2e", _FORCE_LAWS, unit="m/(N s)"),
+        _log("k_e", "surface stiffness k_e (N/m)", 2e4, 2e3, 2e5, ".3g", LAWS, unit="N/m"),
+    )
+    data = interaction_data(p, points)
+    n = int(data[0])
+    program = PageProgram(interaction_program, INPUTS, data=data, outputs=interaction_outputs(n, points),
+                          refusals=interaction_refusals(), scratch=interaction_scratch(n), **press_bindings())
+    return program_panel("interaction", "Chapter 7: approach a surface and press it", controls, program,
+                         {"press": press_build}, widget="interaction_panel", selector="law",
+                         roles={"press": PRESS_ROLES})
+
+
+@ahead(interaction_program)
+def interaction_panel(p=None, points: int = 600, keep: bool = False) -> LivePanel:
+    """Interaction law dropdown (compliance, impedance, admittance, force, parallel) and sliders: the pressing
+    force (N), the stiffness law's ``K_P`` (admittance: ``K_Pd``), damping ``K_D`` (``K_Dd``) and mass ``M_d``
+    along z (N/m, N s/m, kg), the force laws' ``K_F`` (m/N) and ``K_I`` (m/(N s)), and the surface's stiffness
+    ``k_e`` (N/m, log). The sliders a law does not read are greyed out; the other entries of its gains are its
+    controller's defaults. Each change re-runs the approach of
+    :func:`scara.interaction.steady.approach_run` (2 cm above the default surface at (0.4, 0.1) m, a 1 s quintic
+    to the set point of :func:`~scara.interaction.steady.pressing_target` for the pressing force, 2 s held; the
+    package's default wrist sensor: 0.2 N noise, 0.5 N bias on ``f_z``) in one compiled program and redraws the
+    normal force ``-h_z`` against the steady force of the formulas, and the tool's height against its set
+    point, with the transition's figures (:func:`~scara.interaction.steady.contact_transition`). A run the engine
+    stops (a torque or error bound, a divergence, the quill leaving its stroke) is reported in the panel with the
+    time and cause, as :func:`scara.interaction.simulate_contact` words it; so is a number typed beside a slider
+    outside its range (never clamped). ``keep=True`` starts from the last accepted settings of the previous
+    interaction panel built in this Python process. ``points`` (samples per curve) from 2 to 10 000."""
+    return LivePanel(interaction_declaration(p, points), keep=keep)
