@@ -35,6 +35,8 @@ from ..interaction.laws import (ADMITTANCE_GAINS, COMPLIANCE_GAINS, FORCE_GAINS,
                                 AdmittanceController, ComplianceController, ForceController, ImpedanceController,
                                 ParallelController, admittance_law, compliance_law, force_law, impedance_law,
                                 parallel_law)
+from ..interaction.laws import Z_ADMITTANCE, Z_COMPLIANCE, Z_FORCE, Z_IMPEDANCE, _gains_text, z_loop
+from ..interaction.stability import IN_CONTACT, IN_FREE_SPACE, UNSTABLE_MESSAGE, loop_radius, z_axis
 from ..interaction.steady import pressing_height, transition_kernel
 from ..kinematics import ikine
 from ..params import ScaraParams
@@ -65,6 +67,13 @@ _AT_M = (-1, IMPEDANCE_GAINS.offsets.M_d + 2, ADMITTANCE_GAINS.offsets.M_d + 2, 
 _AT_KF = (-1, -1, -1, FORCE_GAINS.offsets.K_F + 2, PARALLEL_GAINS.offsets.K_F)
 _AT_KI = (-1, -1, -1, FORCE_GAINS.offsets.K_I + 2, PARALLEL_GAINS.offsets.K_I)
 _AT_FD = (-1, -1, -1, FORCE_GAINS.offsets.f_d + 2, PARALLEL_GAINS.offsets.f_d)
+#: Each law's linear part along z (:func:`~scara.interaction.laws.z_loop`): its kind and where its gains are
+_Z_KIND = (Z_COMPLIANCE, Z_IMPEDANCE, Z_ADMITTANCE, Z_FORCE, Z_FORCE)
+_C, _I, _A, _F, _P = (L.offsets for L in (COMPLIANCE_GAINS, IMPEDANCE_GAINS, ADMITTANCE_GAINS, FORCE_GAINS,
+                                          PARALLEL_GAINS))
+_Z_GAINS = ((_C.K_P + 2, _C.K_D + 2, -1, -1, -1), (_I.M_d + 2, _I.K_D + 2, _I.K_P + 2, -1, -1),
+            (_A.M_d + 2, _A.K_Dd + 2, _A.K_Pd + 2, _A.K_P + 2, _A.K_D + 2),
+            (_F.K_P + 2, _F.K_D + 2, _F.K_F + 2, _F.K_I + 2, -1), (_P.K_P + 2, _P.K_D + 2, _P.K_F, _P.K_I, -1))
 
 #: The panel's controls the program reads, in the order of ``inputs`` (the dropdown as the index of its value):
 #: the law, the pressing force (N), the stiffness, damping and mass along z of the stiffness laws (N/m, N s/m,
@@ -87,27 +96,31 @@ ARRAYS = ("t", "force", "z", "z_d")
 #: entries each), the quintic's unit profile, the sensor's noise and the output arrays' offsets
 HEADER = ArrayLayout(("n", 1), ("dt", 1), ("substeps", 1), ("limit", 1), ("d3_min", 1), ("d3_max", 1),
                      ("x0", 4), ("q0", 4), ("env", ENVIRONMENT.size), ("plant", N_DP), ("model", N_DP),
-                     ("bias", 3), ("gains_at", 5), ("profile_at", 1), ("noise_at", 1), ("points", 1), ("n_thin", 1),
+                     ("bias", 3), ("m_z", 1), ("c_z", 1), ("gains_at", 5), ("profile_at", 1), ("noise_at", 1), ("points", 1), ("n_thin", 1),
                      ("out_at", len(ARRAYS)))
-(_H_N, _H_DT, _H_SUB, _H_LIMIT, _H_D3_MIN, _H_D3_MAX, _H_X0, _H_Q0, _H_ENV, _H_PLANT, _H_MODEL, _H_BIAS, _H_GAINS,
+(_H_N, _H_DT, _H_SUB, _H_LIMIT, _H_D3_MIN, _H_D3_MAX, _H_X0, _H_Q0, _H_ENV, _H_PLANT, _H_MODEL, _H_BIAS, _H_M, _H_C,
+ _H_GAINS,
  _H_PROFILE, _H_NOISE, _H_POINTS, _H_N_THIN, _H_OUT_AT) = HEADER.offsets
 _E_K = ENVIRONMENT.offsets.stiffness
 _N_ENV = ENVIRONMENT.size
 _E_Z = ENVIRONMENT.offsets.height
+_E_D = ENVIRONMENT.offsets.damping
 
 #: The output numbers: the set point's height above the surface (mm), the figures of the transition
 #: (``first_touch`` s, ``peak_force`` N, ``contact_losses``, ``bounced`` 0/1, ``final_force`` N), the steady force
 #: the formulas predict (N) and the error of the final force (N), the run's start (0) and length (s), and the numbers a refusal
 #: names
 SCALARS = ArrayLayout(("target_mm", 1), ("first_touch", 1), ("peak_force", 1), ("contact_losses", 1), ("bounced", 1),
-                      ("final_force", 1), ("formula", 1), ("force_error", 1), ("t_start", 1), ("duration", 1),
+                      ("final_force", 1), ("formula", 1), ("force_error", 1), ("t_start", 1), ("duration", 1), ("radius", 1), ("radius_free", 1),
                       ("fail_t", 1), ("fail_k", 1), ("fail_value", 1), ("fail_joint", 1), ("fail_d3", 1),
                       ("fail_v3", 1), ("fail_code", 1), ("d3_min", 1), ("d3_max", 1))
-(_O_TARGET, _O_TOUCH, _O_PEAK, _O_LOSSES, _O_BOUNCED, _O_FINAL, _O_FORMULA, _O_ERROR, _O_T0, _O_DURATION, _O_FAIL_T,
+(_O_TARGET, _O_TOUCH, _O_PEAK, _O_LOSSES, _O_BOUNCED, _O_FINAL, _O_FORMULA, _O_ERROR, _O_T0, _O_DURATION, _O_RADIUS, _O_RADIUS_FREE, _O_FAIL_T,
  _O_FAIL_K, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_FAIL_D3, _O_FAIL_V3, _O_FAIL_CODE, _O_D3_MIN, _O_D3_MAX) = SCALARS.offsets
 _SCALARS_SIZE = SCALARS.size
 
-#: the refusal codes: a run the engine stopped, ``_R_RUN + 100 law + cause``
+#: the refusal codes: an unstable sampled loop along z, ``_R_UNSTABLE + 10 law`` (in contact, ``+ 1`` in free
+#: space); a run the engine stopped, ``_R_RUN + 100 law + cause``
+_R_UNSTABLE = 100
 _R_RUN = 1000
 _C_LAW, _C_LAW_OTHER, _C_DIVERGED, _C_SINGULAR, _C_JOINT_MAX, _C_JOINT_MIN, _C_TORQUE = 0, 9, 10, 11, 12, 13, 20
 
@@ -248,6 +261,22 @@ def make_gains(law, inputs, data, gains):
 
 
 @kernel
+def z_radius(law, gains, m, c, k, d, dt, contact):
+    """The spectral radius of the sampled loop along z of ``law`` with its ``gains`` (packed), in contact with
+    the surface ``k``, ``d`` or in free space: the check of ``check_contact`` (:mod:`scara.interaction.stability`)."""
+    g = np.zeros(5)
+    for i in range(5):
+        if _Z_GAINS[law][i] >= 0:
+            g[i] = gains[_Z_GAINS[law][i]]
+    Dy = np.zeros(2)
+    Cw = np.zeros(2)
+    Aw = np.zeros((2, 2))
+    By = np.zeros((2, 2))
+    n = z_loop(_Z_KIND[law], g, m, c, k, d, dt, contact, Dy, Cw, Aw, By)
+    return loop_radius(Dy, Cw, Aw, By, n, m, c, k if contact else 0.0, d if contact else 0.0, dt)
+
+
+@kernel
 def interaction_core(inputs, data, out, q_out, qd_out, tau_out, force_out, sensed_out, offsets, inside):
     """:func:`interaction_program` on the work arrays of a run of ``n`` samples (N, 4) and (N, 3) each, ``inside``
     (N,). Returns 0 or the refusal code."""
@@ -259,6 +288,14 @@ def interaction_core(inputs, data, out, q_out, qd_out, tau_out, force_out, sense
     height = env[_E_Z]
     gains = np.empty(_NG[law])
     make_gains(law, inputs, data, gains)
+    r = z_radius(law, gains, data[_H_M], data[_H_C], env[_E_K], env[_E_D], dt, True)
+    out[_O_RADIUS] = r
+    if not r < 1.0:
+        return _R_UNSTABLE + 10 * law
+    r = z_radius(law, gains, data[_H_M], data[_H_C], env[_E_K], env[_E_D], dt, False)
+    out[_O_RADIUS_FREE] = r
+    if not r < 1.0:
+        return _R_UNSTABLE + 10 * law + 1
     state = np.zeros(_NS[law])
     work = np.zeros((_NW[law], WORK_WIDTH))
     x0 = data[_H_X0:_H_X0 + 4]
@@ -400,7 +437,8 @@ def interaction_data(p: ScaraParams | None = None, points: int = 600) -> np.ndar
     profile_at = at
     noise_at = profile_at + 3 * n
     outputs = interaction_outputs(n, points)
-    header = HEADER.pack(n=n, dt=DT, substeps=SUBSTEPS, limit=LIMIT, d3_min=p.d3_min, d3_max=p.d3_max, x0=x0,
+    m_z, c_z = z_axis(p)
+    header = HEADER.pack(m_z=m_z, c_z=c_z, n=n, dt=DT, substeps=SUBSTEPS, limit=LIMIT, d3_min=p.d3_min, d3_max=p.d3_max, x0=x0,
                          q0=ikine(x0, p, elbow=-1), env=s.array(), plant=dynamic_array(p),
                          model=dynamic_array(ScaraParams()), bias=sensor.bias, gains_at=gains_at,
                          profile_at=profile_at, noise_at=noise_at, points=points, n_thin=thin_length(n, points),
@@ -419,6 +457,31 @@ def _unit_profile() -> np.ndarray:
     return np.vstack([prof, np.repeat([[1.0, 0.0, 0.0]], n_hold, axis=0)])
 
 
+#: the panel's control of each gain's z entry, by law and gain name (the other entries are the defaults)
+_SET = ({"K_P": "K_z", "K_D": "D_z"}, {"M_d": "M_z", "K_D": "D_z", "K_P": "K_z"},
+        {"M_d": "M_z", "K_Dd": "D_z", "K_Pd": "K_z"}, {"K_F": "K_F", "K_I": "K_I"}, {"K_F": "K_F", "K_I": "K_I"})
+
+
+def _gains_template(law: int) -> str:
+    """The gains as ``check_contact`` names them (``K_P = [...], ...``, rounded to 6 decimals, of the law's default
+    controller), the z entry of each gain the panel sets a field of its control (``{K_z:g}``)."""
+    ctl = _CLASSES[law]()
+    parts = []
+    for name, value in ctl._gain_fields().items():
+        text = _gains_text(**{name: value})
+        if name in _SET[law]:
+            field = "{" + _SET[law][name] + ":g}"
+            entries = np.round(np.atleast_1d(value), 6).tolist()
+            if len(entries) > 1:
+                entries = [repr(v) for v in entries]
+                entries[2] = field
+                text = f"{name} = [" + ", ".join(entries) + "]"
+            else:
+                text = f"{name} = [{field}]"
+        parts.append(text)
+    return ", ".join(parts)
+
+
 def interaction_refusals() -> dict:
     """The messages of :func:`interaction_program`'s refusal codes, as :class:`~scara.plots.panels.Text`
     templates of its outputs: :func:`~scara.interaction.simulate_contact`'s wordings of a stopped run."""
@@ -427,6 +490,13 @@ def interaction_refusals() -> dict:
 
     bounded = BoundedController()
     refusals = {}
+    d_e = Surface().damping
+    places = (_fields(IN_CONTACT, k="k_e").replace("{d:g}", f"{d_e:g}"), IN_FREE_SPACE)
+    for law, name in enumerate(LAWS):
+        for where, place in enumerate(places):
+            text = (UNSTABLE_MESSAGE.replace("{name}", name).replace("{place}", place).replace("{dt:g}", f"{DT:g}")
+                    .replace("{r:.6g}", "{" + ("radius" if where == 0 else "radius_free") + ":.6g}"))
+            refusals[_R_UNSTABLE + 10 * law + where] = text.replace("{gains}", _gains_template(law))
     run = dict(t="fail_t", k="fail_k", value="fail_value", d3="fail_d3", v3="fail_v3")
     for law, name in enumerate(LAWS):
         base = _R_RUN + 100 * law
