@@ -38,6 +38,7 @@ PRESS_ROWS = (
     ("first touch (s)", Text("{first_touch:.3f}")),
     ("losses of contact (bounces)", Text("{contact_losses:.0f}")),
     ("set point below the surface (mm)", Text("{target_mm:.4g}")),
+    ("spectral radius along z, in contact / free", Text("{radius:.5f} / {radius_free:.5f}")),
 )
 #: a note when the tool bounced
 PRESS_NOTES = ((Flag("bounced"), Text("The tool bounced: it lost contact {contact_losses:.0f} time(s) after the "

@@ -32,7 +32,7 @@ def interaction_declaration(p=None, points: int = 600) -> Panel:
         Control("law", "dropdown", "interaction law", "compliance", options=LAWS),
         Control("force", "slider", "pressing force (N)", 10.0, 1.0, 50.0, 0.5, unit="N"),
         _log("K_z", "stiffness along z, K_P / K_Pd (N/m)", 5000.0, 500.0, 1e5, ".0f", _STIFFNESS_LAWS, unit="N/m"),
-        _log("D_z", "damping along z, K_D / K_Dd (N s/m)", 650.0, 10.0, 3e4, ".0f", _STIFFNESS_LAWS, unit="N s/m"),
+        _log("D_z", "damping along z, K_D / K_Dd (N s/m)", 650.0, 10.0, 1e5, ".0f", _STIFFNESS_LAWS, unit="N s/m"),
         _log("M_z", "mass along z, M_d (kg)", 10.0, 0.5, 500.0, ".3g", ("impedance", "admittance"), unit="kg"),
         _log("K_F", "force gain K_F (m/N)", 2e-5, 1e-7, 1e-3, ".2e", _FORCE_LAWS, unit="m/N"),
         _log("K_I", "force integral gain K_I (m/(N s))", 2e-3, 1e-5, 1.0, ".2e", _FORCE_LAWS, unit="m/(N s)"),
