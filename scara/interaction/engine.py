@@ -107,6 +107,49 @@ def _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, dp, env, inside_o
     return ok
 
 
+@_compile.kernel(inline="always")
+def _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, plant_dp,
+                       env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
+    """The end of sample ``k`` of the contact loop, after the law returned ``code`` with the torque ``tau`` and
+    the signals ``sig``: both recorded, the law's failure, a torque past ``limit``, the plant in contact to
+    ``k + 1`` (:func:`_step_plant`), a divergence and the quill leaving its stroke checked (``info`` then says
+    which, as :func:`scara._simulate.engine._after_law` does for the free plant). Returns True when the loop
+    stops (a failure, or the last sample done); the one end of a sample of :func:`contact_loop_kernel` and of the
+    interaction panel's program."""
+    for i in range(4):
+        tau_out[k, i] = tau[i]
+    for i in range(sig.shape[0]):
+        sig_out[k, i] = sig[i]
+    if code != OK:
+        info[0] = LAW_FAILED
+        info[1] = k
+        info[2] = code
+        return True
+    for i in range(4):
+        if not abs(tau[i]) < limit:  # also catches NaN
+            _torque_failure(tau, k, info)
+            return True
+    if not _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, plant_dp, env, inside_out, info):
+        return True
+    for i in range(4):
+        qdd_out[k, i] = qdd[i]
+    if k == n - 1:
+        return True
+    for i in range(4):
+        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
+            info[0] = DIVERGED
+            info[1] = k + 1
+            return True
+    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
+        for i in range(4):
+            q_out[k + 1, i] = q[i]
+            qd_out[k + 1, i] = qd[i]
+        info[0] = JOINT_LIMIT
+        info[1] = k + 1
+        return True
+    return False
+
+
 @_compile.signature_kernel(_LOOP_SIGNATURE)
 def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, env, offsets, forces, inside_out,
                         force_row):
@@ -140,36 +183,8 @@ def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, en
         for i in range(ref.shape[1]):
             r[i] = ref[k, i]
         code = law(k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
-        for i in range(4):
-            tau_out[k, i] = tau[i]
-        for i in range(sig.shape[0]):
-            sig_out[k, i] = sig[i]
-        if code != OK:
-            info[0] = LAW_FAILED
-            info[1] = k
-            info[2] = code
-            return
-        for i in range(4):
-            if not abs(tau[i]) < limit:  # also catches NaN
-                _torque_failure(tau, k, info)
-                return
-        if not _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, plant_dp, env, inside_out, info):
-            return
-        for i in range(4):
-            qdd_out[k, i] = qdd[i]
-        if k == n - 1:
-            return
-        for i in range(4):
-            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-                info[0] = DIVERGED
-                info[1] = k + 1
-                return
-        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-            for i in range(4):
-                q_out[k + 1, i] = q[i]
-                qd_out[k + 1, i] = qd[i]
-            info[0] = JOINT_LIMIT
-            info[1] = k + 1
+        if _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half,
+                              plant_dp, env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
             return
 
 

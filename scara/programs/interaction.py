@@ -22,14 +22,14 @@ import math
 import numpy as np
 
 from .._compile import ArrayLayout, kernel
-from .._simulate.engine import _before_law, _torque_failure, failure_cause, failure_message
+from .._simulate.engine import _before_law, _loop_start, failure_cause, failure_message
 from .._simulate.interface import (DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA,
                                    WORK_WIDTH)
 from .._simulate.plant import _plant_constants
 from ..control._common import FAILURE_CAUSES, BoundedController
 from ..dynamics import DP_A1, DP_A2, DP_D0, N_DP, dynamic_array
 from ..errors import check_count
-from ..interaction.engine import _sense, _step_plant
+from ..interaction.engine import _contact_after_law, _sense
 from ..interaction.environment import ENVIRONMENT, ForceSensor, Surface
 from ..interaction.laws import (ADMITTANCE_GAINS, COMPLIANCE_GAINS, FORCE_GAINS, IMPEDANCE_GAINS, PARALLEL_GAINS,
                                 AdmittanceController, ComplianceController, ForceController, ImpedanceController,
@@ -40,6 +40,7 @@ from ..interaction.stability import IN_CONTACT, IN_FREE_SPACE, UNSTABLE_MESSAGE,
 from ..interaction.steady import pressing_height, transition_kernel
 from ..kinematics import ikine
 from ..params import ScaraParams
+from .control import _rows
 from .thinning import thin_index, thin_length
 
 __all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "interaction_program", "interaction_data",
@@ -144,7 +145,8 @@ def _law_step(law, k, t, dt, q, qd, ref, gains, model, state, work, signals, tau
 
 @kernel
 def _contact_loop(law, q0, x0, z1, profile, dt, substeps, limit, d3_mid, d3_half, plant_dp, gains, model, state,
-                  work, env, offsets, force_row, q_out, qd_out, tau_out, force_out, sensed_out, inside_out, info):
+                  work, env, offsets, force_row, q_out, qd_out, qdd_out, tau_out, sig_out, force_out, sensed_out,
+                  inside_out, info):
     """The loop of :func:`scara.interaction.engine.contact_loop_kernel` (the same steps, its own kernels
     ``_before_law``, ``_sense`` and ``_step_plant``) with the law of index ``law`` (:func:`_law_step`: the page's
     engine takes no law as a function) and the reference of the approach built row by row: ``x0`` held, its z
@@ -162,14 +164,9 @@ def _contact_loop(law, q0, x0, z1, profile, dt, substeps, limit, d3_mid, d3_half
     r = np.empty(12)
     tau = np.empty(4)
     sig = np.empty(4)   # the most signals of a law (admittance's x_c)
-    for i in range(4):
-        q[i] = q0[i]
-        qd[i] = 0.0
+    _loop_start(q0, np.zeros(4), q, qd, n, info)   # the approach starts at rest
     h = dt / substeps
     dz = z1 - x0[2]
-    info[0] = OK
-    info[1] = n
-    info[2] = 0
     for k in range(n):
         _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig)
         _sense(k, q, qd, a1, a2, d0, env, inside_out[k], offsets, force_out, sensed_out, work, force_row)
@@ -181,32 +178,8 @@ def _contact_loop(law, q0, x0, z1, profile, dt, substeps, limit, d3_mid, d3_half
         r[6] = dz * profile[k, 1]
         r[10] = dz * profile[k, 2]
         code = _law_step(law, k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
-        for i in range(4):
-            tau_out[k, i] = tau[i]
-        if code != OK:
-            info[0] = LAW_FAILED
-            info[1] = k
-            info[2] = code
-            return
-        for i in range(4):
-            if not abs(tau[i]) < limit:  # also catches NaN
-                _torque_failure(tau, k, info)
-                return
-        if not _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, plant_dp, env, inside_out, info):
-            return
-        if k == n - 1:
-            return
-        for i in range(4):
-            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-                info[0] = DIVERGED
-                info[1] = k + 1
-                return
-        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-            for i in range(4):
-                q_out[k + 1, i] = q[i]
-                qd_out[k + 1, i] = qd[i]
-            info[0] = JOINT_LIMIT
-            info[1] = k + 1
+        if _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half,
+                              plant_dp, env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
             return
 
 
@@ -277,9 +250,10 @@ def z_radius(law, gains, m, c, k, d, dt, contact):
 
 
 @kernel
-def interaction_core(inputs, data, out, q_out, qd_out, tau_out, force_out, sensed_out, offsets, inside):
-    """:func:`interaction_program` on the work arrays of a run of ``n`` samples (N, 4) and (N, 3) each, ``inside``
-    (N,). Returns 0 or the refusal code."""
+def interaction_core(inputs, data, out, q_out, qd_out, qdd_out, tau_out, sig_out, force_out, sensed_out, offsets,
+                     inside):
+    """:func:`interaction_program` on the work arrays of a run of ``n`` samples: ``q_out`` ... ``sig_out`` (N, 4),
+    ``force_out``, ``sensed_out``, ``offsets`` (N, 3), ``inside`` (N,). Returns 0 or the refusal code."""
     law = int(inputs[_I_LAW])
     n = int(data[_H_N])
     dt = data[_H_DT]
@@ -320,7 +294,7 @@ def interaction_core(inputs, data, out, q_out, qd_out, tau_out, force_out, sense
     _contact_loop(law, data[_H_Q0:_H_Q0 + 4], x0, z1, profile, dt, int(data[_H_SUB]), data[_H_LIMIT],
                   0.5 * (d3_min + d3_max), 0.5 * (d3_max - d3_min), data[_H_PLANT:_H_PLANT + N_DP], gains,
                   data[_H_MODEL:_H_MODEL + N_DP], state, work, env, offsets, _ROW[law], q_out, qd_out,
-                  tau_out, force_out, sensed_out, inside, info)
+                  qdd_out, tau_out, sig_out, force_out, sensed_out, inside, info)
     if info[0] != OK:
         return _run_refusal(law, info, dt, q_out, qd_out, tau_out, d3_min, d3_max, out)
     figures = np.zeros(5)
@@ -363,22 +337,20 @@ def interaction_program(inputs, data, out):
     :func:`interaction_outputs`. Returns 0 or the refusal code (:func:`interaction_refusals`)."""
     n = int(data[_H_N])
     at = int(data[_H_NOISE]) + 3 * n   # the scratch follows the data
-    if data.shape[0] < at + 22 * n:    # none: the move allocates its own
+    if data.shape[0] < at + 30 * n:    # none: the move allocates its own
         return interaction_core(inputs, data, out, np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 4)),
-                                np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
-    q_out = data[at:at + 4 * n].reshape(n, 4)
-    qd_out = data[at + 4 * n:at + 8 * n].reshape(n, 4)
-    tau_out = data[at + 8 * n:at + 12 * n].reshape(n, 4)
-    force_out = data[at + 12 * n:at + 15 * n].reshape(n, 3)
-    sensed_out = data[at + 15 * n:at + 18 * n].reshape(n, 3)
-    offsets = data[at + 18 * n:at + 21 * n].reshape(n, 3)
-    inside = data[at + 21 * n:at + 22 * n]
-    return interaction_core(inputs, data, out, q_out, qd_out, tau_out, force_out, sensed_out, offsets, inside)
+                                np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3)),
+                                np.empty((n, 3)), np.empty(n))
+    return interaction_core(inputs, data, out, _rows(data, at, n, 4), _rows(data, at + 4 * n, n, 4),
+                            _rows(data, at + 8 * n, n, 4), _rows(data, at + 12 * n, n, 4),
+                            _rows(data, at + 16 * n, n, 4), _rows(data, at + 20 * n, n, 3),
+                            _rows(data, at + 23 * n, n, 3), _rows(data, at + 26 * n, n, 3),
+                            data[at + 29 * n:at + 30 * n])
 
 
 def interaction_scratch(n: int) -> int:
     """The entries of work space :func:`interaction_program` takes after the data of a run of ``n`` samples."""
-    return 22 * int(n)
+    return 30 * int(n)
 
 
 def interaction_outputs(n: int, points: int) -> ArrayLayout:
