@@ -22,11 +22,9 @@ import math
 import numpy as np
 
 from .._compile import ArrayLayout, kernel
-from .._simulate.engine import _before_law, _loop_start, failure_cause, failure_message
-from .._simulate.interface import (DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, OK, SINGULAR_INERTIA,
-                                   WORK_WIDTH)
+from .._simulate.engine import _before_law, _loop_start
+from .._simulate.interface import OK, WORK_WIDTH
 from .._simulate.plant import _plant_constants
-from ..control._common import FAILURE_CAUSES, BoundedController
 from ..dynamics import DP_A1, DP_A2, DP_D0, N_DP, dynamic_array
 from ..errors import check_count
 from ..interaction.engine import _contact_after_law, _sense
@@ -40,7 +38,7 @@ from ..interaction.stability import IN_CONTACT, IN_FREE_SPACE, UNSTABLE_MESSAGE,
 from ..interaction.steady import pressing_height, transition_kernel
 from ..kinematics import ikine
 from ..params import ScaraParams
-from .control import _rows
+from .control import RUN_FIELDS, _fields, _rows, run_refusal, run_refusals
 from .thinning import thin_index, thin_length
 
 __all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "interaction_program", "interaction_data",
@@ -119,11 +117,12 @@ SCALARS = ArrayLayout(("target_mm", 1), ("first_touch", 1), ("peak_force", 1), (
  _O_FAIL_K, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_FAIL_D3, _O_FAIL_V3, _O_FAIL_CODE, _O_D3_MIN, _O_D3_MAX) = SCALARS.offsets
 _SCALARS_SIZE = SCALARS.size
 
+#: where the outputs a stopped run's refusal names are (:data:`~scara.programs.control.RUN_FIELDS`)
+_RUN_AT = tuple(getattr(SCALARS.offsets, name) for name in RUN_FIELDS)
 #: the refusal codes: an unstable sampled loop along z, ``_R_UNSTABLE + 10 law`` (in contact, ``+ 1`` in free
-#: space); a run the engine stopped, ``_R_RUN + 100 law + cause``
+#: space); a run the engine stopped, ``_R_RUN + 100 law`` + the cause (:func:`~scara.programs.control.run_refusal`)
 _R_UNSTABLE = 100
 _R_RUN = 1000
-_C_LAW, _C_LAW_OTHER, _C_DIVERGED, _C_SINGULAR, _C_JOINT_MAX, _C_JOINT_MIN, _C_TORQUE = 0, 9, 10, 11, 12, 13, 20
 
 
 # --------------------------------------------------------------------------------------------------
@@ -181,37 +180,6 @@ def _contact_loop(law, q0, x0, z1, profile, dt, substeps, limit, d3_mid, d3_half
         if _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half,
                               plant_dp, env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
             return
-
-
-@kernel
-def _run_refusal(law, info, dt, q_out, qd_out, tau_out, d3_min, d3_max, out):
-    """The refusal code of a run the loop stopped (``info = [code, k, law_code]``), as
-    :func:`scara._simulate.engine._raise_failure` words it, and the numbers it names in ``out``."""
-    status = int(info[0])
-    k = int(info[1])
-    base = _R_RUN + 100 * law
-    out[_O_FAIL_K] = k
-    out[_O_FAIL_T] = k * dt
-    if status == NOT_FINITE:
-        i = int(info[2])
-        out[_O_FAIL_VALUE] = tau_out[k, i]
-        out[_O_FAIL_JOINT] = i + 1
-        return base + _C_TORQUE
-    if status == JOINT_LIMIT:
-        out[_O_D3_MIN] = d3_min
-        out[_O_D3_MAX] = d3_max
-        out[_O_FAIL_D3] = q_out[k, 2]
-        out[_O_FAIL_V3] = qd_out[k, 2]
-        return base + (_C_JOINT_MAX if q_out[k, 2] > d3_max else _C_JOINT_MIN)
-    if status == DIVERGED:
-        return base + _C_DIVERGED
-    if status == SINGULAR_INERTIA:
-        return base + _C_SINGULAR
-    code = int(info[2])
-    out[_O_FAIL_CODE] = code
-    if 2 <= code <= 4:
-        return base + _C_LAW + code
-    return base + _C_LAW_OTHER
 
 
 @kernel
@@ -296,7 +264,8 @@ def interaction_core(inputs, data, out, q_out, qd_out, qdd_out, tau_out, sig_out
                   data[_H_MODEL:_H_MODEL + N_DP], state, work, env, offsets, _ROW[law], q_out, qd_out,
                   qdd_out, tau_out, sig_out, force_out, sensed_out, inside, info)
     if info[0] != OK:
-        return _run_refusal(law, info, dt, q_out, qd_out, tau_out, d3_min, d3_max, out)
+        return run_refusal(_R_RUN + 100 * law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out,
+                           _RUN_AT)
     figures = np.zeros(5)
     transition_kernel(force_out, figures)
     out[_O_TOUCH] = figures[0] * dt if figures[0] >= 0 else math.nan
@@ -458,9 +427,6 @@ def interaction_refusals() -> dict:
     """The messages of :func:`interaction_program`'s refusal codes, as :class:`~scara.plots.panels.Text`
     templates of its outputs: :func:`~scara.interaction.simulate_contact`'s wordings of a stopped run."""
     from ..plots.panels import Text  # noqa: PLC0415 - the panels' template class
-    from .control import _CODE, _fields  # noqa: PLC0415 - the field renaming of chapter 6's refusals
-
-    bounded = BoundedController()
     refusals = {}
     d_e = Surface().damping
     places = (_fields(IN_CONTACT, k="k_e").replace("{d:g}", f"{d_e:g}"), IN_FREE_SPACE)
@@ -469,20 +435,6 @@ def interaction_refusals() -> dict:
             text = (UNSTABLE_MESSAGE.replace("{name}", name).replace("{place}", place).replace("{dt:g}", f"{DT:g}")
                     .replace("{r:.6g}", "{" + ("radius" if where == 0 else "radius_free") + ":.6g}"))
             refusals[_R_UNSTABLE + 10 * law + where] = text.replace("{gains}", _gains_template(law))
-    run = dict(t="fail_t", k="fail_k", value="fail_value", d3="fail_d3", v3="fail_v3")
     for law, name in enumerate(LAWS):
-        base = _R_RUN + 100 * law
-        for code in FAILURE_CAUSES:
-            refusals[base + _C_LAW + code] = _fields(failure_message(
-                LAW_FAILED, name, cause=failure_cause(LAW_FAILED, code, bounded.explain)), **run)
-        refusals[base + _C_LAW_OTHER] = _fields(failure_message(LAW_FAILED, name, cause=failure_cause(
-            LAW_FAILED, 0, bounded.explain).replace("code 0", "code " + _CODE)), **run).replace(_CODE, "{fail_code:.0f}")
-        refusals[base + _C_DIVERGED] = _fields(failure_message(DIVERGED, name, cause=failure_cause(
-            DIVERGED, limit=LIMIT)), **run)
-        refusals[base + _C_SINGULAR] = _fields(failure_message(SINGULAR_INERTIA, name, cause=failure_cause(
-            SINGULAR_INERTIA)), **run)
-        for code, end in ((_C_JOINT_MAX, "d3_max"), (_C_JOINT_MIN, "d3_min")):
-            refusals[base + code] = _fields(failure_message(JOINT_LIMIT, name, end=end), **run)
-        refusals[base + _C_TORQUE] = _fields(failure_message(NOT_FINITE, name, what="the torque tau_" + _CODE),
-                                             **run).replace(_CODE, "{fail_joint:.0f}")
+        refusals.update(run_refusals(name, _R_RUN + 100 * law, _CLASSES[law].signals_layout.entry_names, LIMIT))
     return {code: Text(template) for code, template in refusals.items()}

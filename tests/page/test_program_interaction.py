@@ -143,6 +143,42 @@ def test_an_unstable_gain_is_refused_in_the_packages_words(setup, law, change):
     np.testing.assert_allclose(_numbers(shown.split(" with ", 1)[1]), _numbers(tail), rtol=5e-6)
 
 
+@pytest.mark.parametrize("law", pi.LAWS)
+def test_a_stopped_run_is_refused_in_the_engines_words(law):
+    """Every way the contact loop stops (the law's codes, a divergence, a singular inertia, a NaN torque or signal,
+    the quill's stroke): the program's message is simulate_contact's (its _raise_failure)."""
+    import math
+
+    from scara._simulate.engine import _raise_failure
+    from scara._simulate.interface import DIVERGED, JOINT_LIMIT, LAW_FAILED, NOT_FINITE, SINGULAR_INERTIA
+    from scara.params import ScaraParams
+    from scara.programs.control import run_refusal
+
+    P = ScaraParams()
+    ctl = pi._CLASSES[pi.LAWS.index(law)]()
+    names = ctl.signals_layout.entry_names
+    n = 10
+    q, qd, tau = RNG.normal(size=(n, 4)), RNG.normal(size=(n, 4)), RNG.normal(size=(n, 4))
+    sig = RNG.normal(size=(n, 4))
+    refusals = pi.interaction_refusals()
+    cases = [(LAW_FAILED, 4, c) for c in (2, 3, 4, 7)] + [(DIVERGED, 5, 0), (SINGULAR_INERTIA, 6, 0)]
+    cases += [(NOT_FINITE, 3, i) for i in range(4 + len(names))] + [(JOINT_LIMIT, 7, 0), (JOINT_LIMIT, 8, 0)]
+    for status, k, extra in cases:
+        info = np.array([status, k, extra], dtype=float)
+        qq, tt, ss = q.copy(), tau.copy(), sig.copy()
+        if status == JOINT_LIMIT:
+            qq[k, 2] = 1.25 if k == 7 else -0.25
+        if status == NOT_FINITE:
+            (tt if extra < 4 else ss)[k, extra if extra < 4 else extra - 4] = (math.nan, math.inf, -math.inf)[k % 3]
+        out = np.zeros(pi.SCALARS.size)
+        code = run_refusal(pi._R_RUN + 100 * pi.LAWS.index(law), info, 1e-3, qq, qd, tt, ss, P.d3_min, P.d3_max,
+                           out, pi._RUN_AT)
+        values = {name: out[at] for name, at in zip(pi.SCALARS.names, pi.SCALARS.offsets)}
+        with pytest.raises(UnstableError) as exc:
+            _raise_failure(ctl, info, 1e-3, pi.LIMIT, (qq, qd, None, tt, None, None, ss), P, names)
+        assert refusals[code].format(values) == str(exc.value), (status, extra)
+
+
 def test_the_scratch_after_the_data_gives_the_same_moves(setup):
     data, full, outputs = setup
     stale = np.concatenate([data, np.full(full.size - data.size, np.nan)])
