@@ -139,6 +139,30 @@ def _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig):
 
 
 @_compile.kernel(inline="always")
+def _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info):
+    """The checks of the state reached at sample ``k + 1``: an entry of ``q`` or ``qd`` past ``limit``
+    (:data:`DIVERGED`) or the quill outside its stroke ``|d3 - d3_mid| <= d3_half`` (:data:`JOINT_LIMIT`, the state
+    recorded in row ``k + 1`` of ``q_out``, ``qd_out``). Returns True, ``info`` saying which, when one failed; the
+    one check of every loop (the engine's, the contact engine's, the page programs')."""
+    ok = True
+    for i in range(4):
+        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
+            ok = False
+    if not ok:
+        info[0] = DIVERGED
+        info[1] = k + 1
+        return True
+    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
+        for i in range(4):
+            q_out[k + 1, i] = q[i]
+            qd_out[k + 1, i] = qd[i]
+        info[0] = JOINT_LIMIT
+        info[1] = k + 1
+        return True
+    return False
+
+
+@_compile.kernel(inline="always")
 def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out, qd_out,
                qdd_out, tau_out, sig_out, info):
     """The rest of sample ``k`` of ``n`` after the law returned ``code``: its torque and signals recorded, the
@@ -179,21 +203,7 @@ def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, 
             return True
     for i in range(4):
         qdd_out[k, i] = qdd[i]
-    for i in range(4):
-        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-            ok = False
-    if not ok:
-        info[0] = DIVERGED
-        info[1] = k + 1
-        return True
-    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-        for i in range(4):
-            q_out[k + 1, i] = q[i]
-            qd_out[k + 1, i] = qd[i]
-        info[0] = JOINT_LIMIT
-        info[1] = k + 1
-        return True
-    return False
+    return _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info)
 
 
 @_compile.signature_kernel(_LOOP_SIGNATURE)

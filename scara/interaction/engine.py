@@ -25,10 +25,9 @@ from .. import _compile
 from .._simulate.engine import (
     Series, Stepping, _check_run, _first_bad_signal, _owned, _raise_failure, _torque_failure,
 )
-from .._simulate.engine import _before_law, _loop_start
+from .._simulate.engine import _before_law, _loop_start, _state_failed
 from .._simulate.interface import (
-    DIVERGED, JOINT_LIMIT, LAW_FAILED, MEASURED_FORCE, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law,
-    check_law_bounds, law_arrays,
+    LAW_FAILED, MEASURED_FORCE, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
 )
 from .._simulate.plant import _plant_acceleration, _plant_constants, _rk4_step
 from .._simulate.result import SimulationResult, _pose_error
@@ -135,19 +134,7 @@ def _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps,
         qdd_out[k, i] = qdd[i]
     if k == n - 1:
         return True
-    for i in range(4):
-        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-            info[0] = DIVERGED
-            info[1] = k + 1
-            return True
-    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-        for i in range(4):
-            q_out[k + 1, i] = q[i]
-            qd_out[k + 1, i] = qd[i]
-        info[0] = JOINT_LIMIT
-        info[1] = k + 1
-        return True
-    return False
+    return _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info)
 
 
 @_compile.signature_kernel(_LOOP_SIGNATURE)

@@ -5,11 +5,11 @@ page set the same properties to the same numbers.
 """
 from __future__ import annotations
 
-import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ._common import AXIS_COLOURS, PALETTE
+from .control import _value
 from .layout import finish_layout, stacked_axes
 from .panels import Flag, Text
 
@@ -45,17 +45,6 @@ PRESS_NOTES = ((Flag("bounced"), Text("The tool bounced: it lost contact {contac
                                       "first touch.")),)
 
 
-def _value(binding, values):
-    if isinstance(binding, tuple):
-        return [_value(b, values) for b in binding]
-    if isinstance(binding, Text):
-        return binding.format(values)
-    if isinstance(binding, Flag):
-        return bool(values[binding.field] != 0)
-    v = values[binding]
-    return np.asarray(v, dtype=float) if np.ndim(v) else v
-
-
 def press_build(values, height: int = 560) -> go.Figure:
     """The panel's figure for the program's ``values`` (outputs by field, with the settings): the normal force
     ``-h_z`` (N) against the steady force the formulas predict, and the tool's height above the surface (mm)
@@ -67,7 +56,8 @@ def press_build(values, height: int = 560) -> go.Figure:
               "z_d": ("set point (mm)", AXIS_COLOURS[2], "dot", 2)}
     for role in PRESS_ROLES:
         name, colour, dash, row = styles[role]
-        props = {prop: _value(b, values) for prop, b in PRESS_TRACES[role].items()}
+        props = {prop: [_value(x, values) for x in b] if isinstance(b, tuple) else _value(b, values)
+                 for prop, b in PRESS_TRACES[role].items()}
         fig.add_trace(go.Scatter(mode="lines", name=name, line=dict(color=colour, width=1.6, dash=dash), **props),
                       row=row, col=1)
     stacked_axes(fig, ("−h_z (N)", "p_z − surface (mm)"))
