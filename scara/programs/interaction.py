@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from .._compile import ArrayLayout, kernel
-from .._simulate.engine import _before_law, _loop_start
+from .._simulate.engine import _before_law, _loop_arrays, _loop_start
 from .._simulate.interface import OK, WORK_WIDTH
 from .._simulate.plant import _plant_constants
 from ..dynamics import DP_A1, DP_A2, DP_D0, N_DP, dynamic_array
@@ -154,15 +154,7 @@ def _contact_loop(law, q0, x0, z1, profile, dt, substeps, limit, d3_mid, d3_half
     n = q_out.shape[0]
     pc = _plant_constants(plant_dp)
     a1, a2, d0 = plant_dp[DP_A1], plant_dp[DP_A2], plant_dp[DP_D0]
-    q = np.empty(4)
-    qd = np.empty(4)
-    qdd = np.empty(4)
-    spare = np.empty(4)
-    q_law = np.empty(4)
-    qd_law = np.empty(4)
-    r = np.empty(12)
-    tau = np.empty(4)
-    sig = np.empty(4)   # the most signals of a law (admittance's x_c)
+    q, qd, qdd, spare, q_law, qd_law, r, tau, sig = _loop_arrays(12, 4)   # 4: admittance's x_c, the most
     _loop_start(q0, np.zeros(4), q, qd, n, info)   # the approach starts at rest
     h = dt / substeps
     dz = z1 - x0[2]
