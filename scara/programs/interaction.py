@@ -26,7 +26,7 @@ from .._simulate.engine import _before_law, _loop_arrays, _loop_start
 from .._simulate.interface import OK, WORK_WIDTH
 from .._simulate.plant import _plant_constants
 from ..dynamics import DP_A1, DP_A2, DP_D0, N_DP, dynamic_array
-from ..errors import check_count
+from ..errors import ScaraError, check_count
 from ..interaction.engine import _contact_after_law, _sense
 from ..interaction.environment import ENVIRONMENT, ForceSensor, Surface
 from ..interaction.laws import (ADMITTANCE_GAINS, COMPLIANCE_GAINS, FORCE_GAINS, IMPEDANCE_GAINS, PARALLEL_GAINS,
@@ -42,7 +42,8 @@ from .control import RUN_FIELDS, _fields, _rows, run_refusal, run_refusals
 from .thinning import thin_index, thin_length
 
 __all__ = ["LAWS", "INPUTS", "HEADER", "SCALARS", "ARRAYS", "interaction_program", "interaction_data",
-           "interaction_outputs", "interaction_refusals", "make_controller"]
+           "interaction_outputs", "interaction_refusals", "make_controller", "run_outputs", "own_run_outputs",
+           "interaction_run"]
 
 #: The laws of the panel's dropdown, in its order (``inputs[0]`` is the index)
 LAWS = ("compliance", "impedance", "admittance", "force", "parallel")
@@ -210,6 +211,41 @@ def z_radius(law, gains, m, c, k, d, dt, contact):
 
 
 @kernel
+def run_outputs(n, dt, force_out, q_out, z0, z1, profile, height, formula, data, out):
+    """What the panel shows of a run that went through (``force_out`` (N, 3) the forces ``h_e``, ``q_out`` (N, 4)
+    the joints, its set point's height moved from ``z0`` to ``z1`` (m) along ``profile``), written in ``out``: the
+    figures of :func:`~scara.interaction.steady.contact_transition` (its kernel), the steady force of the formulas
+    ``formula`` (N) and the final force's error, the normal force, the tool's and the set point's heights above the
+    surface at ``height`` (mm) thinned to the panel's points. The one reduction of the program's runs and of a
+    run of the reader's own controller (:func:`own_run_outputs`)."""
+    figures = np.zeros(5)
+    transition_kernel(force_out, figures)
+    out[_O_TOUCH] = figures[0] * dt if figures[0] >= 0 else math.nan
+    out[_O_PEAK] = figures[1] if figures[0] >= 0 else 0.0
+    out[_O_LOSSES] = figures[2]
+    out[_O_BOUNCED] = 1.0 if figures[2] > 0 else 0.0
+    out[_O_FINAL] = figures[3]
+    out[_O_FORMULA] = formula
+    out[_O_ERROR] = figures[3] - formula
+    out[_O_TARGET] = 1e3 * (z1 - height)
+    out[_O_DURATION] = (n - 1) * dt
+    points = int(data[_H_POINTS])
+    m = int(data[_H_N_THIN])
+    ot = int(data[_H_OUT_AT])
+    of = int(data[_H_OUT_AT + 1])
+    oz = int(data[_H_OUT_AT + 2])
+    od = int(data[_H_OUT_AT + 3])
+    d0 = data[_H_PLANT + DP_D0]
+    dz = z1 - z0
+    for j in range(m):
+        k = thin_index(n, points, j)
+        out[ot + j] = k * dt
+        out[of + j] = -force_out[k, 2]
+        out[oz + j] = 1e3 * (d0 - q_out[k, 2] - height)
+        out[od + j] = 1e3 * (z0 + dz * profile[k, 0] - height)
+
+
+@kernel
 def interaction_core(inputs, data, out, q_out, qd_out, qdd_out, tau_out, sig_out, force_out, sensed_out, offsets,
                      inside):
     """:func:`interaction_program` on the work arrays of a run of ``n`` samples: ``q_out`` ... ``sig_out`` (N, 4),
@@ -238,8 +274,6 @@ def interaction_core(inputs, data, out, q_out, qd_out, qdd_out, tau_out, sig_out
         z1 = height
     if _AT_K[law] >= 0:
         z1 = pressing_height(height, inputs[_I_FORCE], inputs[_I_K], inputs[_I_KE])
-    out[_O_TARGET] = 1e3 * (z1 - height)
-    out[_O_DURATION] = (n - 1) * dt
     bias = data[_H_BIAS:_H_BIAS + 3]
     at = int(data[_H_NOISE])
     for k in range(n):
@@ -258,33 +292,11 @@ def interaction_core(inputs, data, out, q_out, qd_out, qdd_out, tau_out, sig_out
     if info[0] != OK:
         return run_refusal(_R_RUN + 100 * law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out,
                            _RUN_AT)
-    figures = np.zeros(5)
-    transition_kernel(force_out, figures)
-    out[_O_TOUCH] = figures[0] * dt if figures[0] >= 0 else math.nan
-    out[_O_PEAK] = figures[1] if figures[0] >= 0 else 0.0
-    out[_O_LOSSES] = figures[2]
-    out[_O_BOUNCED] = 1.0 if figures[2] > 0 else 0.0
-    out[_O_FINAL] = figures[3]
     # the steady normal force of the formulas: a stiffness law pressing at its set point
     # (elastic_equilibrium, whose force pressing_height sets), a force law the measured f_d less the bias
     # (force_equilibrium)
     formula = inputs[_I_FORCE] if _AT_K[law] >= 0 else inputs[_I_FORCE] + bias[2]
-    out[_O_FORMULA] = formula
-    out[_O_ERROR] = figures[3] - formula
-    points = int(data[_H_POINTS])
-    m = int(data[_H_N_THIN])
-    ot = int(data[_H_OUT_AT])
-    of = int(data[_H_OUT_AT + 1])
-    oz = int(data[_H_OUT_AT + 2])
-    od = int(data[_H_OUT_AT + 3])
-    d0 = data[_H_PLANT + DP_D0]
-    dz = z1 - x0[2]
-    for j in range(m):
-        k = thin_index(n, points, j)
-        out[ot + j] = k * dt
-        out[of + j] = -force_out[k, 2]
-        out[oz + j] = 1e3 * (d0 - q_out[k, 2] - height)
-        out[od + j] = 1e3 * (x0[2] + dz * profile[k, 0] - height)
+    run_outputs(n, dt, force_out, q_out, x0[2], z1, profile, height, formula, data, out)
     return 0
 
 
@@ -307,6 +319,35 @@ def interaction_program(inputs, data, out):
                             _rows(data, at + 16 * n, n, 4), _rows(data, at + 20 * n, n, 3),
                             _rows(data, at + 23 * n, n, 3), _rows(data, at + 26 * n, n, 3),
                             data[at + 29 * n:at + 30 * n])
+
+
+def own_run_outputs(result, data: np.ndarray, size: int, formula: float) -> np.ndarray:
+    """The outputs of the panel's program (``size`` entries) for a run of a controller the program does not know
+    (a :class:`~scara.interaction.engine.ContactResult` of the panel's approach, :func:`interaction_run`), made by
+    the kernel that makes them for the program's own runs, :func:`run_outputs`: the same figures and curves, the
+    steady force of the formulas ``formula`` (N; NaN when none applies) and the spectral radii NaN (the program
+    does not know the law's linear part)."""
+    n = int(data[_H_N])
+    if len(result.t) != n:
+        raise ScaraError(f"the run holds {len(result.t)} samples but the panel's approach {n}")
+    out = np.zeros(size)
+    at = int(data[_H_PROFILE])
+    run_outputs(n, float(result.dt), np.ascontiguousarray(result.force), np.ascontiguousarray(result.q),
+                float(result.x_d[0, 2]), float(result.x_d[-1, 2]), data[at:at + 3 * n].reshape(n, 3),
+                float(data[_H_ENV + _E_Z]), float(formula), data, out)
+    out[_O_RADIUS] = out[_O_RADIUS_FREE] = math.nan
+    return out
+
+
+def interaction_run(controller, k_e: float, force: float, p: ScaraParams | None = None):
+    """The panel's approach for ``controller`` (any interaction controller: an object with the interface of
+    :class:`scara.Controller`, reading the sensor in its scratch row ``measured_force`` if it declares one) on the
+    default surface of stiffness ``k_e`` (N/m), pressing with ``force`` N:
+    :func:`~scara.interaction.steady.approach_run` with the program's start, move, hold and sensor."""
+    from ..interaction.steady import approach_run  # noqa: PLC0415
+
+    return approach_run(controller, Surface(stiffness=k_e), interaction_sensor(), at=AT, lift=LIFT, force=force,
+                        move=MOVE, hold=HOLD, substeps=SUBSTEPS)
 
 
 def interaction_scratch(n: int) -> int:

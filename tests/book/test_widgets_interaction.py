@@ -105,3 +105,44 @@ def test_jupyter_and_the_page_draw_the_same_traces(panel):
         assert shown.layout.title.text == page["title"]
     panel.controls["law"].value = "compliance"
     panel.controls["k_e"].value = 2e4
+
+
+def _my_compliance(K_z, D_z):
+    from scara.interaction import ComplianceController
+
+    return ComplianceController(K_P=(5000.0, 5000.0, K_z, 200.0), K_D=(600.0, 600.0, D_z, 25.0))
+
+
+def test_a_controller_of_ones_own_joins_the_dropdown_and_draws_as_the_panels_own():
+    """The reader's compliance controller, built from the sliders it names and run by simulate_contact, draws what
+    the panel's program draws for the package's compliance law at the same settings (to the rounding of the set
+    point's quintic), and reads only the sliders it names."""
+    from scara import ScaraError
+
+    panel = interaction_panel(points=POINTS, controllers={"my compliance": _my_compliance})
+    assert panel.declaration.page is None and panel.controls["law"].options[-1] == "my compliance"
+    panel.controls["D_z"].value = 900.0
+    ours = {k: v.copy() for k, v in ((t.name, np.asarray(t.y, float)) for t in panel.figures[0].data)}
+    panel.controls["law"].value = "my compliance"
+    assert panel.last_error is None, panel.last_error
+    assert panel.controls["M_z"].disabled and not panel.controls["D_z"].disabled
+    assert not panel.controls["k_e"].disabled
+    theirs = {t.name: np.asarray(t.y, float) for t in panel.figures[0].data}
+    for name in ("−h_z (N)", "p_z − height (mm)", "set point (mm)", "formula (N)"):
+        w = ours[name]
+        np.testing.assert_allclose(theirs[name], w, rtol=1e-9, atol=1e-9 * max(np.ptp(w), np.max(np.abs(w))),
+                                   err_msg=name)
+    assert panel.figures[0].layout.title.text.startswith("my compliance: final −h_z ")
+    # an unstable setting of it: the package's check, with its label and the gains it was given
+    panel.controls["D_z"].value = 5e4
+    assert panel.last_error.startswith("my compliance with K_z = 5000, D_z = 50000: the sampled loop of compliance")
+    assert panel.figures[0].layout.title.text == STALE_TITLE
+
+    def broken(K_I):
+        raise ValueError("no law here")
+
+    bad = interaction_panel(points=POINTS, controllers={"broken": broken})
+    bad.controls["law"].value = "broken"
+    assert bad.last_error == "broken with K_I = 0.002: building it failed: ValueError: no law here"
+    with pytest.raises(ScaraError, match="the label 'force' is one of the panel's own controllers"):
+        interaction_panel(controllers={"force": _my_compliance})
