@@ -23,7 +23,7 @@ import numpy as np
 
 from .._compile import ArrayLayout, kernel
 from .._simulate.engine import _before_law, _loop_arrays, _loop_start
-from .._simulate.interface import OK, WORK_WIDTH
+from .._simulate.interface import MEASURED_FORCE, OK, WORK_WIDTH
 from .._simulate.plant import _plant_constants
 from ..dynamics import DP_A1, DP_A2, DP_D0, N_DP, dynamic_array
 from ..errors import ScaraError, check_count
@@ -56,7 +56,7 @@ _NS = tuple(c.state_layout.size for c in _CLASSES)
 _NW = tuple(c.work_layout.size for c in _CLASSES)
 _NSIG = tuple(c.signals_layout.size for c in _CLASSES)
 #: The scratch row of the sensor's reading (-1: the law reads no sensor), as the engine finds it
-_ROW = tuple(int(c.work_layout.offsets.measured_force) if "measured_force" in c.work_layout.names else -1
+_ROW = tuple(int(getattr(c.work_layout.offsets, MEASURED_FORCE)) if MEASURED_FORCE in c.work_layout.names else -1
              for c in _CLASSES)
 #: Where each law keeps the gains the panel sets along z (-1: the law has no such gain): its stiffness
 #: (compliance ``K_P``, impedance ``K_P``, admittance ``K_Pd``), damping (``K_D``, ``K_D``, ``K_Dd``), mass ``M_d``;
