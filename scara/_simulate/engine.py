@@ -139,16 +139,21 @@ def _before_law(k, q, qd, q_out, qd_out, q_law, qd_law, tau, sig):
 
 
 @_compile.kernel(inline="always")
-def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out, qd_out,
-               qdd_out, tau_out, sig_out, info):
-    """The rest of sample ``k`` of ``n`` after the law returned ``code``: its torque and signals recorded, the
-    checks of the engine (the law's code, the torque's bound, the state's, the quill's stroke), the plant's RK4
-    steps with the torque held (``substeps`` of ``h``; the acceleration just after the update in row ``k`` of
-    ``qdd_out``). Returns True when the run stops here, ``info`` saying why (see :func:`closed_loop_kernel`)."""
-    n_sig = sig.shape[0]
+def _loop_arrays(n_ref, n_sig):
+    """The work arrays of a closed loop: ``q``, ``qd``, ``qdd``, ``spare``, ``q_law``, ``qd_law`` (4,) each, the
+    reference row ``r`` (``n_ref``,), the torque ``tau`` (4,) and the signals ``sig`` (``n_sig``,)."""
+    return (np.empty(4), np.empty(4), np.empty(4), np.empty(4), np.empty(4), np.empty(4), np.empty(n_ref),
+            np.empty(4), np.empty(n_sig))
+
+
+@_compile.kernel(inline="always")
+def _law_failed(k, code, tau, sig, limit, tau_out, sig_out, info):
+    """Sample ``k``'s torque ``tau`` and signals ``sig`` recorded in ``tau_out``, ``sig_out``; True, ``info`` saying
+    why, when the law returned a failure ``code`` or a torque is past ``limit`` (or not finite). The one reading of
+    a law's step in every loop."""
     for i in range(4):
         tau_out[k, i] = tau[i]
-    for i in range(n_sig):
+    for i in range(sig.shape[0]):
         sig_out[k, i] = sig[i]
     if code != OK:
         info[0] = LAW_FAILED
@@ -161,6 +166,42 @@ def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, 
             ok = False
     if not ok:
         _torque_failure(tau, k, info)
+        return True
+    return False
+
+
+@_compile.kernel(inline="always")
+def _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info):
+    """The checks of the state reached at sample ``k + 1``: an entry of ``q`` or ``qd`` past ``limit``
+    (:data:`DIVERGED`) or the quill outside its stroke ``|d3 - d3_mid| <= d3_half`` (:data:`JOINT_LIMIT`, the state
+    recorded in row ``k + 1`` of ``q_out``, ``qd_out``). Returns True, ``info`` saying which, when one failed; the
+    one check of every loop (the engine's, the contact engine's, the page programs')."""
+    ok = True
+    for i in range(4):
+        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
+            ok = False
+    if not ok:
+        info[0] = DIVERGED
+        info[1] = k + 1
+        return True
+    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
+        for i in range(4):
+            q_out[k + 1, i] = q[i]
+            qd_out[k + 1, i] = qd[i]
+        info[0] = JOINT_LIMIT
+        info[1] = k + 1
+        return True
+    return False
+
+
+@_compile.kernel(inline="always")
+def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, q_out, qd_out,
+               qdd_out, tau_out, sig_out, info):
+    """The rest of sample ``k`` of ``n`` after the law returned ``code``: its torque and signals recorded, the
+    checks of the engine (the law's code, the torque's bound, the state's, the quill's stroke), the plant's RK4
+    steps with the torque held (``substeps`` of ``h``; the acceleration just after the update in row ``k`` of
+    ``qdd_out``). Returns True when the run stops here, ``info`` saying why (see :func:`closed_loop_kernel`)."""
+    if _law_failed(k, code, tau, sig, limit, tau_out, sig_out, info):
         return True
     if k == n - 1:
         a, c = _plant_acceleration(math.cos(q[1]), math.sin(q[1]), (qd[0], qd[1], qd[2], qd[3]),
@@ -179,21 +220,7 @@ def _after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, 
             return True
     for i in range(4):
         qdd_out[k, i] = qdd[i]
-    for i in range(4):
-        if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-            ok = False
-    if not ok:
-        info[0] = DIVERGED
-        info[1] = k + 1
-        return True
-    if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-        for i in range(4):
-            q_out[k + 1, i] = q[i]
-            qd_out[k + 1, i] = qd[i]
-        info[0] = JOINT_LIMIT
-        info[1] = k + 1
-        return True
-    return False
+    return _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info)
 
 
 @_compile.signature_kernel(_LOOP_SIGNATURE)
@@ -221,15 +248,7 @@ def closed_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info):
     n_ref = ref.shape[1]
     n_sig = sig_out.shape[1]
     pc = _plant_constants(plant_dp)
-    q = np.empty(4)
-    qd = np.empty(4)
-    qdd = np.empty(4)
-    spare = np.empty(4)
-    q_law = np.empty(4)
-    qd_law = np.empty(4)
-    r = np.empty(n_ref)
-    tau = np.empty(4)
-    sig = np.empty(n_sig)
+    q, qd, qdd, spare, q_law, qd_law, r, tau, sig = _loop_arrays(n_ref, n_sig)
     _loop_start(q0, qd0, q, qd, n, info)
     h = dt / substeps
     for k in range(n):

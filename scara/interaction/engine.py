@@ -23,12 +23,11 @@ import numpy as np
 
 from .. import _compile
 from .._simulate.engine import (
-    Series, Stepping, _check_run, _first_bad_signal, _owned, _raise_failure, _torque_failure,
+    Series, Stepping, _check_run, _first_bad_signal, _owned, _raise_failure,
 )
-from .._simulate.engine import _before_law, _loop_start
+from .._simulate.engine import _before_law, _law_failed, _loop_arrays, _loop_start, _state_failed
 from .._simulate.interface import (
-    DIVERGED, JOINT_LIMIT, LAW_FAILED, MEASURED_FORCE, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law,
-    check_law_bounds, law_arrays,
+    MEASURED_FORCE, NOT_FINITE, OK, SINGULAR_INERTIA, _compiled_law, check_law_bounds, law_arrays,
 )
 from .._simulate.plant import _plant_acceleration, _plant_constants, _rk4_step
 from .._simulate.result import SimulationResult, _pose_error
@@ -107,6 +106,26 @@ def _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, dp, env, inside_o
     return ok
 
 
+@_compile.kernel(inline="always")
+def _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half, plant_dp,
+                       env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
+    """The end of sample ``k`` of the contact loop, after the law returned ``code`` with the torque ``tau`` and
+    the signals ``sig``: both recorded, the law's failure, a torque past ``limit``, the plant in contact to
+    ``k + 1`` (:func:`_step_plant`), a divergence and the quill leaving its stroke checked (``info`` then says
+    which, as :func:`scara._simulate.engine._after_law` does for the free plant). Returns True when the loop
+    stops (a failure, or the last sample done); the one end of a sample of :func:`contact_loop_kernel` and of the
+    interaction panel's program."""
+    if _law_failed(k, code, tau, sig, limit, tau_out, sig_out, info):
+        return True
+    if not _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, plant_dp, env, inside_out, info):
+        return True
+    for i in range(4):
+        qdd_out[k, i] = qdd[i]
+    if k == n - 1:
+        return True
+    return _state_failed(k, q, qd, limit, d3_mid, d3_half, q_out, qd_out, info)
+
+
 @_compile.signature_kernel(_LOOP_SIGNATURE)
 def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, env, offsets, forces, inside_out,
                         force_row):
@@ -123,15 +142,7 @@ def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, en
     n = ref.shape[0]
     pc = _plant_constants(plant_dp)
     a1, a2, d0 = plant_dp[DP_A1], plant_dp[DP_A2], plant_dp[DP_D0]
-    q = np.empty(4)
-    qd = np.empty(4)
-    qdd = np.empty(4)
-    spare = np.empty(4)
-    q_law = np.empty(4)
-    qd_law = np.empty(4)
-    r = np.empty(ref.shape[1])
-    tau = np.empty(4)
-    sig = np.empty(sig_out.shape[1])
+    q, qd, qdd, spare, q_law, qd_law, r, tau, sig = _loop_arrays(ref.shape[1], sig_out.shape[1])
     _loop_start(q0, qd0, q, qd, n, info)
     h = dt / substeps
     for k in range(n):
@@ -140,36 +151,8 @@ def contact_loop_kernel(law, start, ref, stepping, plant_dp, data, out, info, en
         for i in range(ref.shape[1]):
             r[i] = ref[k, i]
         code = law(k, k * dt, dt, q_law, qd_law, r, gains, model, state, work, sig, tau)
-        for i in range(4):
-            tau_out[k, i] = tau[i]
-        for i in range(sig.shape[0]):
-            sig_out[k, i] = sig[i]
-        if code != OK:
-            info[0] = LAW_FAILED
-            info[1] = k
-            info[2] = code
-            return
-        for i in range(4):
-            if not abs(tau[i]) < limit:  # also catches NaN
-                _torque_failure(tau, k, info)
-                return
-        if not _step_plant(k, n, q, qd, qdd, spare, tau, pc, h, substeps, plant_dp, env, inside_out, info):
-            return
-        for i in range(4):
-            qdd_out[k, i] = qdd[i]
-        if k == n - 1:
-            return
-        for i in range(4):
-            if not (abs(q[i]) < limit and abs(qd[i]) < limit):
-                info[0] = DIVERGED
-                info[1] = k + 1
-                return
-        if not abs(q[2] - d3_mid) <= d3_half:  # the quill left its stroke (the plant has no end stop)
-            for i in range(4):
-                q_out[k + 1, i] = q[i]
-                qd_out[k + 1, i] = qd[i]
-            info[0] = JOINT_LIMIT
-            info[1] = k + 1
+        if _contact_after_law(k, n, code, q, qd, qdd, spare, tau, sig, pc, h, substeps, limit, d3_mid, d3_half,
+                              plant_dp, env, inside_out, q_out, qd_out, qdd_out, tau_out, sig_out, info):
             return
 
 

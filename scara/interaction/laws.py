@@ -287,6 +287,72 @@ def parallel_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
 # --------------------------------------------------------------------------------------------------
 # the controllers
 # --------------------------------------------------------------------------------------------------
+#: The kinds of z loop (:func:`z_loop`): the laws' linear parts along z
+Z_COMPLIANCE, Z_IMPEDANCE, Z_ADMITTANCE, Z_FORCE = range(4)
+
+
+@kernel
+def z_loop(kind, g, m, c, k, d, dt, contact, Dy, Cw, Aw, By):
+    """The linear part ``(D_y, C_w, A_w, B_y)`` of a law along z (:mod:`.stability`) into ``Dy`` (2,), ``Cw`` (2,),
+    ``Aw`` (2, 2), ``By`` (2, 2) (their first ``n`` entries, rows); returns ``n``, the size of the law's state.
+    ``kind`` one of ``Z_COMPLIANCE`` (``g = (K_P, K_D)`` z entries), ``Z_IMPEDANCE`` (``M_d, K_D, K_P``),
+    ``Z_ADMITTANCE`` (``M_d, K_Dd, K_Pd, K_P, K_D``), ``Z_FORCE`` (``K_P, K_D, K_F, K_I``); on the mass ``m`` (kg)
+    with friction ``c`` (N s/m), in contact (``contact`` true) with the surface ``k`` (N/m), ``d`` (N s/m), or in
+    free space, sampled every ``dt`` (s)."""
+    kk = k if contact else 0.0
+    dd = d if contact else 0.0
+    if kind == Z_COMPLIANCE:
+        Dy[0] = -g[0]
+        Dy[1] = -g[1]
+        return 0
+    if kind == Z_IMPEDANCE:
+        r = m / g[0]
+        Dy[0] = -r * (g[2] + kk) + kk
+        Dy[1] = -r * (g[1] + dd) + c + dd
+        return 0
+    if kind == Z_ADMITTANCE:
+        Md, Kd, Kp, KP, KD = g[0], g[1], g[2], g[3], g[4]
+        acw0, acw1 = -Kp / Md, -Kd / Md
+        acy0, acy1 = -kk / Md, -dd / Md
+        Cw[0] = m * (acw0 + KP)
+        Cw[1] = m * (acw1 + KD)
+        Dy[0] = m * (acy0 - KP) + kk
+        Dy[1] = m * (acy1 - KD) + (c + dd)
+        col0, col1 = dt * dt, dt
+        Aw[0, 0] = 1.0 + col0 * acw0
+        Aw[0, 1] = dt + col0 * acw1
+        Aw[1, 0] = 0.0 + col1 * acw0
+        Aw[1, 1] = 1.0 + col1 * acw1
+        By[0, 0] = col0 * acy0
+        By[0, 1] = col0 * acy1
+        By[1, 0] = col1 * acy0
+        By[1, 1] = col1 * acy1
+        return 2
+    KP, KD, KF, KI = g[0], g[1], g[2], g[3]
+    if not contact:   # only the inner position loop (the integral then ramps the reference on purpose)
+        Dy[0] = -m * KP
+        Dy[1] = -m * KD + c
+        return 0
+    Dy[0] = m * KP * (-KF * k - 1.0) + k
+    Dy[1] = m * (-KP * KF * d - KD) + c + d
+    Cw[0] = m * KP * KI
+    Aw[0, 0] = 1.0
+    By[0, 0] = -dt * k
+    By[0, 1] = -dt * d
+    return 1
+
+
+def _z_loops(kind, gains, m, c, k, d, dt) -> dict:
+    """``{"contact": ..., "free": ...}`` of :func:`z_loop` as arrays of their sizes."""
+    out = {}
+    for where in ("contact", "free"):
+        Dy, Cw, Aw, By = np.zeros(2), np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+        n = z_loop(kind, np.array(gains, dtype=float), float(m), float(c), float(k), float(d), float(dt),
+                   where == "contact", Dy, Cw, Aw, By)
+        out[where] = (Dy, Cw[:n].copy(), Aw[:n, :n].copy(), By[:n].copy())
+    return out
+
+
 def _gains_text(**gains) -> str:
     return ", ".join(f"{name} = {np.round(np.atleast_1d(v), 6).tolist()}" for name, v in gains.items())
 
@@ -349,9 +415,6 @@ class _InteractionController(BoundedController):
         check_sampled(self.name, self.z_loops(m, c, k, d, dt), m, c, k, d, dt, _gains_text(**self._gain_fields()))
 
 
-_NONE = (np.zeros(0), np.zeros((0, 0)), np.zeros((0, 2)))
-
-
 class ComplianceController(_InteractionController):
     """Active compliance control (Siciliano et al., sec. 9.2): PD in the operational space with gravity
     compensation; no force sensor. At rest on an elastic surface the tool settles at
@@ -379,8 +442,7 @@ class ComplianceController(_InteractionController):
         self._setup({"K_P": K_P, "K_D": K_D}, model, tau_max, max_error)
 
     def z_loops(self, m, c, k, d, dt):
-        loop = (np.array([-self.K_P[2], -self.K_D[2]]),) + _NONE
-        return {"contact": loop, "free": loop}
+        return _z_loops(Z_COMPLIANCE, (self.K_P[2], self.K_D[2]), m, c, k, d, dt)
 
 
 class ImpedanceController(_InteractionController):
@@ -414,12 +476,7 @@ class ImpedanceController(_InteractionController):
         return self.M_d.copy()
 
     def z_loops(self, m, c, k, d, dt):
-        r = m / self.M_d[2]
-
-        def loop(kk, dd):
-            return (np.array([-r * (self.K_P[2] + kk) + kk, -r * (self.K_D[2] + dd) + c + dd]),) + _NONE
-
-        return {"contact": loop(k, d), "free": loop(0.0, 0.0)}
+        return _z_loops(Z_IMPEDANCE, (self.M_d[2], self.K_D[2], self.K_P[2]), m, c, k, d, dt)
 
 
 class AdmittanceController(_InteractionController):
@@ -457,29 +514,15 @@ class AdmittanceController(_InteractionController):
         return self.K_Pd / self.K_P
 
     def z_loops(self, m, c, k, d, dt):
-        Md, Kd, Kp = self.M_d[2], self.K_Dd[2], self.K_Pd[2]
-        KP, KD = self.K_P[2], self.K_D[2]
-
-        def loop(kk, dd):
-            acw = np.array([-Kp / Md, -Kd / Md])
-            acy = np.array([-kk / Md, -dd / Md])
-            Cw = m * (acw + [KP, KD])
-            Dy = m * (acy - [KP, KD]) + [kk, c + dd]
-            col = np.array([[dt * dt], [dt]])
-            Aw = np.array([[1.0, dt], [0.0, 1.0]]) + col @ acw.reshape(1, 2)
-            return Dy, Cw, Aw, col @ acy.reshape(1, 2)
-
-        return {"contact": loop(k, d), "free": loop(0.0, 0.0)}
+        return _z_loops(Z_ADMITTANCE, (self.M_d[2], self.K_Dd[2], self.K_Pd[2], self.K_P[2], self.K_D[2]), m, c, k,
+                        d, dt)
 
 
 def _force_loops(m, c, k, d, dt, KP, KD, KF, KI):
-    """The sampled loop along z of the force laws (the integral of the force error as the law's state; the
-    measured force compensated, ``+h`` in ``u``); in free space only the inner position loop (the integral then
-    ramps the reference on purpose)."""
-    contact = (np.array([m * KP * (-KF * k - 1.0) + k, m * (-KP * KF * d - KD) + c + d]), np.array([m * KP * KI]),
-               np.array([[1.0]]), np.array([[-dt * k, -dt * d]]))
-    free = (np.array([-m * KP, -m * KD + c]),) + _NONE
-    return {"contact": contact, "free": free}
+    """The sampled loop along z of the force laws (:func:`z_loop`, ``Z_FORCE``): the integral of the force error
+    as the law's state, the measured force compensated (``+h`` in ``u``); in free space only the inner position
+    loop."""
+    return _z_loops(Z_FORCE, (KP, KD, KF, KI), m, c, k, d, dt)
 
 
 class ForceController(_InteractionController):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compile import kernel
 from ..errors import ScaraError, as_array, check_angles, check_positive
 from .environment import ForceSensor, Surface
 from .laws import ForceController, ParallelController
@@ -161,6 +162,45 @@ def law_equilibrium(controller, x_d, surface: Surface | None = None, sensor: For
     return x, h
 
 
+@kernel
+def transition_kernel(force, figures):
+    """The figures of :func:`contact_transition` from the forces ``h_e`` (N, 3) N of a run, into ``figures`` (5,):
+    the index of the first sample in contact (-1: none), the peak normal force ``-h_z`` (N), the losses of contact
+    after the first touch, the normal force at the last sample (N), the number of samples in contact. A sample is
+    in contact when any entry of its force is nonzero."""
+    n = force.shape[0]
+    first = -1
+    losses = 0
+    touching = 0
+    before = False
+    peak = -force[0, 2]
+    for k in range(n):
+        now = force[k, 0] != 0.0 or force[k, 1] != 0.0 or force[k, 2] != 0.0
+        if now:
+            touching += 1
+            if first < 0:
+                first = k
+        elif before and first >= 0:
+            losses += 1
+        before = now
+        fn = -force[k, 2]
+        if fn > peak:
+            peak = fn
+    figures[0] = first
+    figures[1] = peak
+    figures[2] = losses
+    figures[3] = -force[n - 1, 2]
+    figures[4] = touching
+
+
+@kernel
+def pressing_height(height, force, kz, ke):
+    """The set point's height (m) at which a law showing the stiffness ``kz`` (N/m) presses the surface at
+    ``height`` (m) of stiffness ``ke`` (N/m) with ``force`` N: ``height - force (kz + ke) / (kz ke)``
+    (:func:`pressing_target`)."""
+    return height - force * (kz + ke) / (kz * ke)
+
+
 def contact_transition(result) -> dict:
     """The figures of a run from free space onto the surface (a :class:`~.engine.ContactResult`): ``first_touch``
     (s, NaN without contact), ``peak_force`` (N, the largest normal force ``-h_z``), ``contact_losses`` (how
@@ -169,16 +209,14 @@ def contact_transition(result) -> dict:
     force = getattr(result, "force", None)
     if force is None:
         raise ScaraError(f"contact_transition needs a run of simulate_contact, got {type(result).__name__}")
-    touching = np.asarray(result.in_contact)
-    fn = -np.asarray(force)[:, 2]
-    if not touching.any():
+    figures = np.zeros(5)
+    transition_kernel(np.ascontiguousarray(force, dtype=float), figures)
+    k0, peak, losses, final = int(figures[0]), float(figures[1]), int(figures[2]), float(figures[3])
+    if k0 < 0:
         return {"first_touch": float("nan"), "peak_force": 0.0, "contact_losses": 0, "bounced": False,
-                "final_force": float(fn[-1])}
-    k0 = int(np.argmax(touching))
-    after = touching[k0:]
-    losses = int(np.count_nonzero(after[:-1] & ~after[1:]))
-    return {"first_touch": float(result.t[k0]), "peak_force": float(fn.max()), "contact_losses": losses,
-            "bounced": losses > 0, "final_force": float(fn[-1])}
+                "final_force": final}
+    return {"first_touch": float(result.t[k0]), "peak_force": peak, "contact_losses": losses,
+            "bounced": losses > 0, "final_force": final}
 
 
 class _Reference:
@@ -234,8 +272,7 @@ def pressing_target(controller, start, surface: Surface | None = None, force: fl
     if getattr(controller, "stiffness_field", None) is None:
         target[2] = s.height
     else:
-        kz = float(controller.stiffness()[2])
-        target[2] = s.height - force * (kz + s.stiffness) / (kz * s.stiffness)
+        target[2] = pressing_height(s.height, force, float(controller.stiffness()[2]), s.stiffness)
     return target
 
 

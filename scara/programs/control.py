@@ -138,6 +138,8 @@ SCALARS = ArrayLayout(
  _O_FAIL_V3, _O_FAIL_CODE, _O_FAIL_THETA2, _O_FAIL_W, _O_FRICTION, _O_REACH, _O_D3_MIN, _O_D3_MAX, _O_START_X,
  _O_START_PY, _O_START_PZ, _O_START_PHI) = SCALARS.offsets
 _SCALARS_SIZE = SCALARS.size
+#: where the outputs of :data:`RUN_FIELDS` are (:func:`run_refusal`)
+_RUN_AT = (_O_FAIL_K, _O_FAIL_T, _O_FAIL_VALUE, _O_FAIL_JOINT, _O_D3_MIN, _O_D3_MAX, _O_FAIL_D3, _O_FAIL_V3, _O_FAIL_CODE)
 #: The flag of each law's error trace (``robust_shown`` ...), in the order of :data:`LAWS`
 SHOWN = tuple(f"{name}_shown" for name in LAWS)
 
@@ -682,35 +684,39 @@ def _drawn(law, n, dt, points, e, tau, sig, pos, t, data, out):
             out[ez_at + j] = 1e3 * e[k, 2]
 
 
+#: The outputs a stopped run's refusal names, in the order of :func:`run_refusal`'s ``at``
+RUN_FIELDS = ("fail_k", "fail_t", "fail_value", "fail_joint", "d3_min", "d3_max", "fail_d3", "fail_v3", "fail_code")
+
+
 @kernel
-def _run_refusal(law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out):
-    """The refusal code of a run the loop stopped (``info = [code, k, law_code]``), as
-    :func:`scara._simulate.engine._raise_failure` words it, and the numbers it names in ``out``."""
+def run_refusal(base, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out, at):
+    """The refusal code (``base`` + the cause) of a run the loop stopped (``info = [code, k, law_code]``), as
+    :func:`scara._simulate.engine._raise_failure` words it, and the numbers it names in ``out`` at the offsets
+    ``at`` of :data:`RUN_FIELDS`: the one reading of a stopped run of every page program that runs a loop."""
     status = int(info[0])
     k = int(info[1])
-    base = _R_RUN + 100 * law
-    out[_O_FAIL_K] = k
-    out[_O_FAIL_T] = k * dt
+    out[at[0]] = k
+    out[at[1]] = k * dt
     if status == NOT_FINITE:
         i = int(info[2])
         if i < 4:
-            out[_O_FAIL_VALUE] = tau_out[k, i]
-            out[_O_FAIL_JOINT] = i + 1
+            out[at[2]] = tau_out[k, i]
+            out[at[3]] = i + 1
             return base + _C_TORQUE
-        out[_O_FAIL_VALUE] = sig_out[k, i - 4]
+        out[at[2]] = sig_out[k, i - 4]
         return base + _C_SIGNAL + i - 4
     if status == JOINT_LIMIT:
-        out[_O_D3_MIN] = d3_min
-        out[_O_D3_MAX] = d3_max
-        out[_O_FAIL_D3] = q_out[k, 2]
-        out[_O_FAIL_V3] = qd_out[k, 2]
+        out[at[4]] = d3_min
+        out[at[5]] = d3_max
+        out[at[6]] = q_out[k, 2]
+        out[at[7]] = qd_out[k, 2]
         return base + (_C_JOINT_MAX if q_out[k, 2] > d3_max else _C_JOINT_MIN)
     if status == DIVERGED:
         return base + _C_DIVERGED
     if status == SINGULAR_INERTIA:
         return base + _C_SINGULAR
     code = int(info[2])
-    out[_O_FAIL_CODE] = code
+    out[at[8]] = code
     if 2 <= code <= 4:
         return base + _C_LAW + code
     return base + _C_LAW_OTHER
@@ -845,7 +851,8 @@ def control_core(inputs, data, out):
         info[1] = kb
         info[2] = 4 + ib
     if int(info[0]) != OK:
-        return _run_refusal(law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out)
+        return run_refusal(_R_RUN + 100 * law, info, dt, q_out, qd_out, tau_out, sig_out, d3_min, d3_max, out,
+                           _RUN_AT)
     # what the panel shows of the run
     _pose_error(q_out, x, data[_H_PLANT + DP_A1], data[_H_PLANT + DP_A2], data[_H_PLANT + DP_D0], qdd_out, e)
     code = run_outputs(law, n, dt, e, tau_out, sig_out, pos, t, data, out)
@@ -1041,6 +1048,31 @@ def _joint_template(template: str, i: int, **names) -> str:
     return _fields(text.replace("{joint}", str(i + 1)), **names)
 
 
+def run_refusals(name: str, base: int, signals, limit: float) -> dict:
+    """The messages of :func:`run_refusal`'s codes from ``base`` for the law ``name`` with the signals ``signals``
+    run with the bound ``limit``: :func:`scara.simulate`'s wordings (templates of the outputs :data:`RUN_FIELDS`)."""
+    bounded = BoundedController()   # the stated bounds of every law (TAU_MAX, MAX_ERROR): its explain
+    run = dict(t="fail_t", k="fail_k", value="fail_value", d3="fail_d3", v3="fail_v3")
+    refusals = {}
+    for code in FAILURE_CAUSES:
+        refusals[base + _C_LAW + code] = _fields(failure_message(
+            LAW_FAILED, name, cause=failure_cause(LAW_FAILED, code, bounded.explain)), **run)
+    refusals[base + _C_LAW_OTHER] = _fields(failure_message(LAW_FAILED, name, cause=failure_cause(
+        LAW_FAILED, 0, bounded.explain).replace("code 0", "code " + _CODE)), **run).replace(_CODE, "{fail_code:.0f}")
+    refusals[base + _C_DIVERGED] = _fields(failure_message(DIVERGED, name, cause=failure_cause(
+        DIVERGED, limit=limit)), **run)
+    refusals[base + _C_SINGULAR] = _fields(failure_message(SINGULAR_INERTIA, name, cause=failure_cause(
+        SINGULAR_INERTIA)), **run)
+    for code, end in ((_C_JOINT_MAX, "d3_max"), (_C_JOINT_MIN, "d3_min")):
+        refusals[base + code] = _fields(failure_message(JOINT_LIMIT, name, end=end), **run)
+    refusals[base + _C_TORQUE] = _fields(failure_message(NOT_FINITE, name, what="the torque tau_" + _CODE),
+                                         **run).replace(_CODE, "{fail_joint:.0f}")
+    for s, signal in enumerate(signals):
+        refusals[base + _C_SIGNAL + s] = _fields(failure_message(NOT_FINITE, name, what=f"the signal {signal!r}"),
+                                                 **run)
+    return refusals
+
+
 def control_refusals(p: ScaraParams | None = None) -> dict:
     """The messages of :func:`control_program`'s refusal codes, as :class:`~scara.plots.panels.Text` templates of
     its outputs: the package's own wordings (the controllers' checks, :func:`scara.simulate`'s failures), as the
@@ -1102,7 +1134,6 @@ def control_refusals(p: ScaraParams | None = None) -> dict:
 
         refusals[_R_SMALL_WEIGHT + i] = _joint_template(SMALL_WEIGHT_MESSAGE, i, K_pi="bad_value").replace(
             "{name}", PI_NAMES[i])
-    bounded = BoundedController()   # the stated bounds of every law (TAU_MAX, MAX_ERROR): its explain
     for law, name in enumerate(LAWS):
         sizes = (_NG[law], N_DP, _NS[law], _NW[law], _NSIG[law], 4)
         for j, array in enumerate(_TRIAL_ARRAYS):
@@ -1112,22 +1143,5 @@ def control_refusals(p: ScaraParams | None = None) -> dict:
             refusals[_R_TRIAL + 20 * law + 2 * j + 1] = fill_text(READS_PAST, controller=name, array=array,
                                                                   described=text)
         refusals[_R_TRIAL + 20 * law + 12] = fill_text(READS_PAST_ANY, controller=name)
-        base = _R_RUN + 100 * law
-        run = dict(t="fail_t", k="fail_k", value="fail_value", d3="fail_d3", v3="fail_v3")
-        for code in FAILURE_CAUSES:
-            refusals[base + _C_LAW + code] = _fields(failure_message(
-                LAW_FAILED, name, cause=failure_cause(LAW_FAILED, code, bounded.explain)), **run)
-        refusals[base + _C_LAW_OTHER] = _fields(failure_message(LAW_FAILED, name, cause=failure_cause(
-            LAW_FAILED, 0, bounded.explain).replace("code 0", "code " + _CODE)), **run).replace(_CODE, "{fail_code:.0f}")
-        refusals[base + _C_DIVERGED] = _fields(failure_message(DIVERGED, name, cause=failure_cause(
-            DIVERGED, limit=LIMIT)), **run)
-        refusals[base + _C_SINGULAR] = _fields(failure_message(SINGULAR_INERTIA, name, cause=failure_cause(
-            SINGULAR_INERTIA)), **run)
-        for code, end in ((_C_JOINT_MAX, "d3_max"), (_C_JOINT_MIN, "d3_min")):
-            refusals[base + code] = _fields(failure_message(JOINT_LIMIT, name, end=end), **run)
-        refusals[base + _C_TORQUE] = _fields(failure_message(NOT_FINITE, name, what="the torque tau_" + _CODE),
-                                             **run).replace(_CODE, "{fail_joint:.0f}")
-        for s, signal in enumerate(_SIGNAL_NAMES[law]):
-            refusals[base + _C_SIGNAL + s] = _fields(failure_message(NOT_FINITE, name, what=f"the signal {signal!r}"),
-                                                     **run)
+        refusals.update(run_refusals(name, _R_RUN + 100 * law, _SIGNAL_NAMES[law], LIMIT))
     return {code: Text(template) for code, template in refusals.items()}

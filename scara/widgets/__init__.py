@@ -13,3 +13,4 @@ from .trajectory import waypoint_editor
 from .clik import clik_panel
 from .dynamics import dynamics_panel
 from .control import control_panel
+from .interaction import interaction_panel

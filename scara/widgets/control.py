@@ -54,12 +54,12 @@ def _callable_name(factory) -> str:
     return getattr(factory, "__qualname__", None) or getattr(factory, "__name__", None) or type(factory).__name__
 
 
-def own_gains(factory, label: str = "controller") -> tuple:
-    """The panel's gains (:data:`OWN_GAINS`) that ``factory`` (a controller class or a function returning a
-    controller) takes: the keyword parameters of its signature (a class's ``__init__``) named after a gain, in
-    the sliders' order; all of them when it takes ``**kwargs``; none when its signature cannot be read. Raises
-    :class:`ScaraError` naming ``label`` for a parameter without a default that is not a gain (the panel could
-    not call it)."""
+def own_gains(factory, label: str = "controller", gains: tuple = OWN_GAINS) -> tuple:
+    """The panel's gains (``gains``, default :data:`OWN_GAINS`) that ``factory`` (a controller class or a function
+    returning a controller) takes: the keyword parameters of its signature (a class's ``__init__``) named after a
+    gain, in the sliders' order; all of them when it takes ``**kwargs``; none when its signature cannot be read.
+    Raises :class:`ScaraError` naming ``label`` for a parameter without a default that is not a gain (the panel
+    could not call it)."""
     try:
         params = inspect.signature(factory).parameters.values()
     except (TypeError, ValueError):
@@ -67,22 +67,24 @@ def own_gains(factory, label: str = "controller") -> tuple:
     reads = set()
     for prm in params:
         if prm.kind is prm.VAR_KEYWORD:
-            return OWN_GAINS
+            return tuple(gains)
         if prm.kind is prm.VAR_POSITIONAL:
             continue
-        if prm.name in OWN_GAINS and prm.kind is not prm.POSITIONAL_ONLY:
+        if prm.name in gains and prm.kind is not prm.POSITIONAL_ONLY:
             reads.add(prm.name)
         elif prm.default is prm.empty:
             name = _callable_name(factory)
+            a, b = gains[0], gains[1]
             raise ScaraError(f"controllers[{label!r}]: {name} needs the argument {prm.name!r}, which the panel does "
                              f"not give: it calls it with the keyword arguments it names among the panel's gains "
-                             f"{', '.join(OWN_GAINS)}; give {prm.name!r} a default, or pass a function that sets it, "
-                             f"e.g. lambda K_P, K_D: {name}(K_P=K_P, K_D=K_D, {prm.name}=...)")
-    return tuple(g for g in OWN_GAINS if g in reads)
+                             f"{', '.join(gains)}; give {prm.name!r} a default, or pass a function that sets it, "
+                             f"e.g. lambda {a}, {b}: {name}({a}={a}, {b}={b}, {prm.name}=...)")
+    return tuple(g for g in gains if g in reads)
 
 
-def _own_controllers(controllers) -> dict:
-    """``controllers`` (label -> class or factory) checked: ``{label: (factory, gains it takes)}``."""
+def _own_controllers(controllers, choices: tuple = _CONTROLLERS, gains: tuple = OWN_GAINS) -> dict:
+    """``controllers`` (label -> class or factory) checked against the panel's own ``choices`` and ``gains``:
+    ``{label: (factory, gains it takes)}``."""
     if controllers is None:
         return {}
     if not isinstance(controllers, Mapping):
@@ -92,13 +94,13 @@ def _own_controllers(controllers) -> dict:
     for label, factory in controllers.items():
         if not isinstance(label, str) or not label.strip():
             raise ScaraError(f"controllers: a label must be a non-empty str (the dropdown's text), got {label!r:.80}")
-        if label in _CONTROLLERS:
+        if label in choices:
             raise ScaraError(f"controllers: the label {label!r} is one of the panel's own controllers "
-                             f"{_CONTROLLERS}; give yours another name")
+                             f"{choices}; give yours another name")
         if not callable(factory):
             raise ScaraError(f"controllers[{label!r}] must be a controller class or a function returning a controller "
                              f"(called with the panel's gains), got {type(factory).__name__} {factory!r:.80}")
-        own[label] = (factory, own_gains(factory, label))
+        own[label] = (factory, own_gains(factory, label, gains))
     return own
 
 

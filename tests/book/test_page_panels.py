@@ -47,6 +47,7 @@ REFUSED = {
     "clik_panel": {"Kx": 2500.0},
     "waypoint_editor": {"x": 1.0},
     "control_panel": {"K_D": 2.0},
+    "interaction_panel": {"D_z": 5e4},
 }
 
 

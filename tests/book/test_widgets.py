@@ -15,8 +15,8 @@ import plotly.graph_objects as go  # noqa: E402
 
 from scara import ScaraError, ScaraParams, pose  # noqa: E402
 from scara.widgets import (  # noqa: E402
-    clik_panel, control_panel, dynamics_panel, inverse_kinematics_panel, kinematics_panel, manipulability_panel,
-    waypoint_editor,
+    clik_panel, control_panel, dynamics_panel, interaction_panel, inverse_kinematics_panel, kinematics_panel,
+    manipulability_panel, waypoint_editor,
 )
 from scara.widgets._common import STALE_TITLE, NumberSlider, _delta, _same, readable  # noqa: E402
 
@@ -241,7 +241,7 @@ def test_panels_refuse_start_values_of_the_wrong_type(build, kwargs, names):
         assert text in str(info.value)
 
 
-@pytest.mark.parametrize("build", [clik_panel, control_panel])
+@pytest.mark.parametrize("build", [clik_panel, control_panel, interaction_panel])
 @pytest.mark.parametrize("points, names", [
     (10**6, ("points = 1000000", "2 <= points <= 10000")),
     (0, ("points = 0", "2 <= points <= 10000")),
@@ -435,6 +435,8 @@ def _moves():
         ("inertia matrix", lambda: dynamics_panel(), dict(payload=10.0, theta2=30.0)),
         ("controllers", lambda: control_panel(traj), dict(K_P=1500.0)),
         ("controllers", lambda: control_panel(traj), dict(controller="adaptive (Slotine-Li)")),
+        ("interaction", lambda: interaction_panel(), dict(force=20.0, k_e=5e4)),
+        ("interaction", lambda: interaction_panel(), dict(law="force", K_I=1e-3)),
     ]
 
 

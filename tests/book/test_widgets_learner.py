@@ -25,8 +25,8 @@ from scara.dynamics import gravity_kernel  # noqa: E402
 from scara.plots.control import TUNING_CONTROLLERS, tuning_figure  # noqa: E402
 from scara.plots.panels import range_template  # noqa: E402
 from scara.widgets import (  # noqa: E402
-    clik_panel, control_panel, dynamics_panel, inverse_kinematics_panel, kinematics_panel, manipulability_panel,
-    waypoint_editor,
+    clik_panel, control_panel, dynamics_panel, interaction_panel, inverse_kinematics_panel, kinematics_panel,
+    manipulability_panel, waypoint_editor,
 )
 from scara.widgets._common import REFUSED, STALE_TITLE, NumberSlider, _same, _widget_safe  # noqa: E402
 from scara.widgets.control import OWN_GAINS, PER_JOINT, make_controller, own_gains  # noqa: E402
@@ -170,7 +170,7 @@ def test_greying_disables_both_parts_of_a_slider():
 def _panels():
     return [("direct kinematics", kinematics_panel), ("ellipses", manipulability_panel),
             ("inertia matrix", dynamics_panel), ("waypoint editor", lambda: waypoint_editor().panel),
-            ("CLIK", clik_panel), ("controllers", control_panel)]
+            ("CLIK", clik_panel), ("controllers", control_panel), ("interaction", interaction_panel)]
 
 
 @pytest.mark.parametrize("name, build", _panels(), ids=[n for n, _ in _panels()])
@@ -415,6 +415,7 @@ def _keep_cases():
         ("inertia matrix", dynamics_panel, dict(payload=10.0, K_P3=2e4), dict(payload=1000.0)),
         ("CLIK", clik_panel, dict(method="pseudo-inverse + null space", Kx=600.0), dict(Kx=1e4)),
         ("controllers", control_panel, dict(controller="adaptive (Slotine-Li)", K_pi=0.02), dict(K_P=0.0)),
+        ("interaction", interaction_panel, dict(law="impedance", M_z=20.0), dict(D_z=1e5)),
     ]
 
 

@@ -9,7 +9,7 @@ import pytest
 from scara.page.assets import PANELS_JS, STATIC, engine_source, panel_spec, program_kernels
 
 PANELS = ("kinematics_panel", "inverse_kinematics_panel", "manipulability_panel", "waypoint_editor", "clik_panel",
-          "dynamics_panel", "control_panel")
+          "dynamics_panel", "control_panel", "interaction_panel")
 
 
 @pytest.fixture(scope="module")
@@ -19,7 +19,8 @@ def engine():
 
 def test_the_engine_holds_every_program_and_asks_for_nothing(engine):
     names = program_kernels()
-    assert {"kinematics_program", "editor_program", "clik_program", "control_program", "clik_prepare"} <= set(names)
+    assert {"kinematics_program", "editor_program", "clik_program", "control_program", "clik_prepare",
+            "interaction_program"} <= set(names)
     for name in names:
         assert re.search(rf"^\s+{name}: ", engine, re.M), name
     for text in (engine, (STATIC / PANELS_JS).read_text()):

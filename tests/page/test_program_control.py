@@ -274,7 +274,8 @@ def test_every_stop_of_the_loop_is_worded_as_the_engine_words_it(law):
         if status == NOT_FINITE:
             (tau if extra < 4 else sig)[k, extra if extra < 4 else extra - 4] = (math.nan, math.inf, -math.inf)[k % 3]
         out = np.zeros(pc.SCALARS.size)
-        code = pc._run_refusal(pc.LAWS.index(law), info.astype(float), 1e-3, qq, qd, tau, sig, P.d3_min, P.d3_max, out)
+        code = pc.run_refusal(pc._R_RUN + 100 * pc.LAWS.index(law), info.astype(float), 1e-3, qq, qd, tau, sig,
+                              P.d3_min, P.d3_max, out, pc._RUN_AT)
         values = {name: out[at] for name, at in zip(pc.SCALARS.names, pc.SCALARS.offsets)}
         with pytest.raises(scara.UnstableError) as exc:
             _raise_failure(ctl, info, 1e-3, pc.LIMIT, (qq, qd, None, tau, None, None, sig), P, ctl.signal_names)
