@@ -223,6 +223,17 @@ def check_control(values, figs, traj, jref):
     assert figs[0]["title"].split(";")[0] == head, (figs[0]["title"], head)
 
 
+def check_interaction(values, figs):
+    from scara.interaction import contact_transition
+    from scara.programs.interaction import interaction_run, make_controller
+
+    c = make_controller(values["law"], *(values[k] for k in ("force", "K_z", "D_z", "M_z", "K_F", "K_I")))
+    tr = contact_transition(interaction_run(c, values["k_e"], values["force"]))
+    head = f"{values['law']}: final −h_z {tr['final_force']:.4g} N"
+    assert figs[0]["title"].startswith(head), (figs[0]["title"], head)
+    assert f"peak {tr['peak_force']:.4g} N, first touch at {tr['first_touch']:.3f} s" in figs[0]["title"]
+
+
 # -- the moves, per panel: (control, action, argument); "refuse" moves must be refused --------------------
 def _ref():
     from scara import clik2, reference_trajectory
@@ -295,6 +306,16 @@ PANELS = {
                      ("K_I (1/s³)", "readout", "1000000", ("K_I", "Routh")), ("K_I (1/s³)", "readout", "8000", None),
                      ("K_P (1/s²)", "readout", "0", ("K_P = 0 1/s² is outside the panel's range 10 to 100000 1/s²",)),
                      ("K_P (1/s²)", "readout", "900", None)]),
+    ],
+    "07_interaction.ipynb": [
+        dict(name="interaction", three_d=False, check=lambda v, f, ref: check_interaction(v, f),
+             moves=[(c, "key", k) for c in ("pressing force (N)", "stiffness along z, K_P / K_Pd (N/m)",
+                                             "surface stiffness k_e (N/m)") for k in KEYS[:2]]
+             + [("interaction law", "select", "impedance"), ("mass along z, M_d (kg)", "key", "ArrowRight"),
+                ("interaction law", "select", "force"), ("force integral gain K_I (m/(N s))", "key", "ArrowLeft"),
+                ("interaction law", "select", "compliance")],
+             refuse=[("damping along z, K_D / K_Dd (N s/m)", "readout", "50000", ("spectral radius",)),
+                     ("damping along z, K_D / K_Dd (N s/m)", "readout", "650", None)]),
     ],
 }
 

@@ -19,9 +19,7 @@ IN_CI = os.environ.get("CI", "").lower() == "true"
 #: the pages, and whether the test runs them: Run All of the introduction (one code cell, the course's animation)
 #: did not settle within the test's wait in headless Chromium here, so its text is read as opened, with the
 #: book's results it carries
-#: chapter 7 has no live panel yet: it is read here, and moves to test_jupyterlab.py with its panel
-PAGES = {"intro.ipynb": False, "appendix_verification.ipynb": True, "package.ipynb": True,
-         "07_interaction.ipynb": True}
+PAGES = {"intro.ipynb": False, "appendix_verification.ipynb": True, "package.ipynb": True}
 
 
 def _unavailable(reason: str):
