@@ -5,8 +5,9 @@
 Each row is one call as the book makes it, on the 70 s reference of chapter 3 (70,001 samples at 1 ms):
 CLIK with each method (``clik``, ``clik2``), each controller of chapter 6 on the plant with the 5 kg payload
 (``RobustController``, ``AdaptiveController``, ``OperationalSpaceController`` with and without integral
-action; the joint controllers follow ``clik2``'s joints, computed once outside the timing) and the PD
-closed loop with gravity compensation of chapter 5. Times are the median of ``--repeats`` calls in CPU time
+action, PD with gravity compensation and computed torque; the joint controllers follow ``clik2``'s joints,
+computed once outside the timing), the PD closed loop with gravity compensation of chapter 5, and chapter 7's
+approach and press of the surface under force control (3 s, 10 RK4 steps per sample). Times are the median of ``--repeats`` calls in CPU time
 of this process (``time.process_time``: another process holding the core does not count), after one call
 that compiles or loads the compiled code. *call* is the whole public call (checks, loop, result); *loop* is
 the compiled loop alone, as the result reports it. With ``--json`` the medians are written to a file, and
@@ -19,8 +20,9 @@ import json
 import statistics
 import time
 
-from scara import (AdaptiveController, OperationalSpaceController, PDGravityController, RobustController,
-                   ScaraParams, clik, clik2, reference_trajectory, simulate)
+from scara import (AdaptiveController, ComputedTorqueController, OperationalSpaceController, PDGravityController,
+                   PDPlusGravityController, RobustController, ScaraParams, clik, clik2, reference_trajectory, simulate)
+from scara.interaction import ForceController, ForceSensor, Surface, approach_run
 
 CLOCK = time.process_time
 
@@ -43,6 +45,10 @@ def runs():
         "operational + integral, 70 s": (controller(OperationalSpaceController(integral=True)), "elapsed"),
         "operational, no integral, 70 s": (controller(OperationalSpaceController(integral=False)), "elapsed"),
         "PD + gravity, 70 s": (lambda: simulate(PDGravityController(), traj, plant, joint_reference=jref), "elapsed"),
+        "PD + gravity (chapter 6), 70 s": (controller(PDPlusGravityController()), "elapsed"),
+        "computed torque, 70 s": (controller(ComputedTorqueController()), "elapsed"),
+        "force control, approach and press, 3 s": (
+            lambda: approach_run(ForceController(), Surface(), ForceSensor(), hold=2.0), "elapsed"),
     }
 
 
