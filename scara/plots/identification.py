@@ -92,6 +92,7 @@ def error_size_figure(duration, errors: dict, theory: dict, title: str = "Identi
                         line=dict(color=colour, dash=DASHES[k], width=2),
                         hovertemplate="%{x:.0f} s of data<br>theory %{y:.2e}<extra></extra>")
     fig.update_xaxes(type="log", title_text="length of the record (s)")
-    fig.update_yaxes(type="log", exponentformat="power", title_text="relative error (-)")
+    # labels at 1, 2 and 5 of each decade: the minor labels 2 to 9 of a one-decade axis run into each other
+    fig.update_yaxes(type="log", exponentformat="power", dtick="D2", title_text="relative error (-)")
     return finish_layout(fig, title, height)
 
