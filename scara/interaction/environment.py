@@ -75,7 +75,8 @@ def friction_factor(vx, vy, v_s):
 def face_force(pen, pen_rate, vx, vy, k, d, mu, v_s):
     """The force ``(f_x, f_y, f_z)`` (N) on the tool from a horizontal face it penetrates by ``pen`` (m) at the
     rate ``pen_rate`` (m/s) while it slides at ``(vx, vy)`` (m/s): ``f_z = f_n = max(0, k pen + d pen_rate)``
-    for ``pen > 0`` (else no force), friction ``-mu f_n tanh(|v| / v_s) v / |v|`` (see the module)."""
+    for ``pen > 0`` (else no force), friction ``-mu f_n tanh(|v| / v_s) v / |v|`` (see the module; the book's
+    (eq-int-normal) and (eq-int-friction))."""
     if not pen > 0.0:
         return 0.0, 0.0, 0.0
     fn = k * pen + d * pen_rate
@@ -89,7 +90,7 @@ def face_force(pen, pen_rate, vx, vy, k, d, mu, v_s):
 def contact_force_kernel(px, py, pz, vx, vy, vz, env, inside):
     """The force ``(f_x, f_y, f_z)`` (N) the environment ``env`` (:data:`ENVIRONMENT`) exerts on the tool at
     ``(px, py, pz)`` moving at ``(vx, vy, vz)``; ``inside`` (0/1) says whether the peg is in the hole (see the
-    module). The force the end effector exerts on the environment is its opposite, ``h_e``."""
+    module). The force the end effector exerts on the environment is its opposite, ``h_e`` (the book's (eq-int-he))."""
     if not env[_E_ON] > 0.0:
         return 0.0, 0.0, 0.0
     z_s = env[_E_Z]
@@ -231,9 +232,9 @@ NO_ENVIRONMENT = ENVIRONMENT.zeros()
 
 @dataclass(frozen=True)
 class ForceSensor:
-    """The wrist force sensor: it reads ``h_e + n + bias`` at each sample, ``n`` white Gaussian noise of standard
-    deviation ``noise`` (N, >= 0) on each of ``f_x, f_y, f_z``, drawn from ``numpy.random.default_rng(seed)``;
-    ``bias`` (3,) N, default 0.5 N on ``f_z``.
+    """The wrist force sensor (the book's (eq-int-sensor)): it reads ``h_e + n + bias`` at each sample, ``n`` white
+    Gaussian noise of standard deviation ``noise`` (N, >= 0) on each of ``f_x, f_y, f_z``, drawn from
+    ``numpy.random.default_rng(seed)``; ``bias`` (3,) N, default 0.5 N on ``f_z``.
 
     >>> ForceSensor().readings(np.zeros((4, 3))).shape
     (4, 3)

@@ -149,8 +149,8 @@ _CW_J, _CW_XT, _CW_V, _CW_G = COMPLIANCE_WORK.offsets
 
 @control_law
 def compliance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Active compliance (module docstring): ``u = g_hat + J_A^T (K_P x~ + K_D (xd_d - v))``; the engine's fixed
-    twelve arguments. No signals, no state."""
+    """Active compliance (module docstring; the book's (eq-int-compliance)): ``u = g_hat + J_A^T (K_P x~ + K_D (xd_d -
+    v))``; the engine's fixed twelve arguments. No signals, no state."""
     J = work[_CW_J:_CW_J + 4]
     xt = work[_CW_XT]
     v = work[_CW_V]
@@ -176,7 +176,8 @@ _I_MD, _I_KD, _I_KP, _I_TMAX, _I_EMAX = IMPEDANCE_GAINS.offsets
 
 @control_law
 def impedance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Impedance control (module docstring): inverse dynamics with the measured force; the engine's arguments."""
+    """Impedance control (module docstring; the book's (eq-int-impedance)): inverse dynamics with the measured
+    force; the engine's arguments."""
     id_terms(q, qd, ref, model, work)
     for i in range(4):
         hi = work[_W_H, i] if i < 3 else 0.0
@@ -199,8 +200,8 @@ ADMITTANCE_SIGNALS = ArrayLayout(("compliant_frame", _AXES))
 
 @control_law
 def admittance_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Admittance control (module docstring): the compliant frame ``x_c`` (state, started at ``x_d(0)``) and the
-    inner loop; ``signals`` = ``x_c`` (4,)."""
+    """Admittance control (module docstring; the book's (eq-int-admittance), (eq-int-admittance-inner)): the compliant
+    frame ``x_c`` (state, started at ``x_d(0)``) and the inner loop; ``signals`` = ``x_c`` (4,)."""
     if not state[_AS_ON] > 0.0:
         for i in range(4):
             state[_AS_X + i] = ref[REF_POS + i]
@@ -238,7 +239,8 @@ FORCE_SIGNALS = ArrayLayout(("x_F", ("x", "y", "z")))
 
 @control_law
 def force_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Force control with an inner position loop and a PI on the force error (module docstring); ``state`` =
+    """Force control with an inner position loop and a PI on the force error (module docstring; the book's
+    (eq-int-force-inner), (eq-int-force-pi)); ``state`` =
     ``x_F0`` (the start position, set at the first sample) and the integral ``s`` of ``f_d - h`` (N s);
     ``signals`` = ``x_F`` (3,) m."""
     id_terms(q, qd, ref, model, work)
@@ -270,8 +272,8 @@ PARALLEL_SIGNALS = ArrayLayout(("x_F", 1))
 
 @control_law
 def parallel_law(k, t, dt, q, qd, ref, gains, model, state, work, signals, tau):
-    """Parallel force/position control (module docstring); ``state`` = the integral ``s`` of ``f_d - h_z`` (N s),
-    ``signals`` = ``x_F`` (m), the force loop's share of the z reference."""
+    """Parallel force/position control (module docstring; the book's (eq-int-parallel)); ``state`` = the integral
+    ``s`` of ``f_d - h_z`` (N s), ``signals`` = ``x_F`` (m), the force loop's share of the z reference."""
     id_terms(q, qd, ref, model, work)
     xf = gains[_P_KF] * (gains[_P_FD] - work[_W_H, 2]) + gains[_P_KI] * state[_PS_S]
     signals[_PG_XF] = xf
@@ -416,8 +418,8 @@ class _InteractionController(BoundedController):
 
 
 class ComplianceController(_InteractionController):
-    """Active compliance control (Siciliano et al., sec. 9.2): PD in the operational space with gravity
-    compensation; no force sensor. At rest on an elastic surface the tool settles at
+    """Active compliance control (the book's (eq-int-compliance); Siciliano et al., sec. 9.2): PD in the operational
+    space with gravity compensation; no force sensor. At rest on an elastic surface the tool settles at
     ``x = (K_P + K)^-1 (K_P x_d + K x_r)`` (:func:`~.steady.elastic_equilibrium`).
 
     Parameters
@@ -447,7 +449,8 @@ class ComplianceController(_InteractionController):
 
 class ImpedanceController(_InteractionController):
     """Impedance control in the operational space (Siciliano et al., sec. 9.3): inverse dynamics with the
-    measured force, imposing ``M_d x~_ddot + K_D x~_dot + K_P x~ = h_A``.
+    measured force (the book's (eq-int-impedance)), imposing ``M_d x~_ddot + K_D x~_dot + K_P x~ = h_A``
+    (eq-int-impedance-closed).
 
     Parameters
     ----------
@@ -480,8 +483,8 @@ class ImpedanceController(_InteractionController):
 
 
 class AdmittanceController(_InteractionController):
-    """Admittance control (Siciliano et al., sec. 9.3): a compliant frame driven by the measured force, tracked
-    by an inner inverse dynamics loop that compensates the measured force.
+    """Admittance control (the book's (eq-int-admittance); Siciliano et al., sec. 9.3): a compliant frame driven by
+    the measured force, tracked by an inner inverse dynamics loop that compensates the measured force.
 
     Parameters
     ----------
@@ -526,8 +529,9 @@ def _force_loops(m, c, k, d, dt, KP, KD, KF, KI):
 
 
 class ForceController(_InteractionController):
-    """Force control with an inner position loop (Siciliano et al., sec. 9.4.1-9.4.2), with a PI on the force
-    error: at rest the measured force equals ``f_d`` exactly, so the true force errs by the sensor's bias.
+    """Force control with an inner position loop (the book's (eq-int-force-inner), (eq-int-force-pi); Siciliano
+    et al., sec. 9.4.1-9.4.2), with a PI on the force error: at rest (eq-int-force-rest) the measured force equals
+    ``f_d`` exactly, so the true force errs by the sensor's bias.
 
     Parameters
     ----------
@@ -562,9 +566,9 @@ class ForceController(_InteractionController):
 
 
 class ParallelController(_InteractionController):
-    """Parallel force/position control (Siciliano et al., sec. 9.4.3): the inner position loop of
-    :class:`ForceController` on ``x~ + x_F``, the force loop (a PI on ``f_d - h_z``) along z only. At rest the
-    measured ``h_z = f_d`` and ``(x, y, phi) = (x_d, y_d, phi_d)``.
+    """Parallel force/position control (the book's (eq-int-parallel); Siciliano et al., sec. 9.4.3): the inner
+    position loop of :class:`ForceController` on ``x~ + x_F``, the force loop (a PI on ``f_d - h_z``) along z only. At
+    rest the measured ``h_z = f_d`` and ``(x, y, phi) = (x_d, y_d, phi_d)``.
 
     Parameters
     ----------

@@ -64,7 +64,8 @@ def insertion_summary(result) -> dict:
     """The figures of a peg-in-hole run: ``landed_on_surface`` (the surface bore the peg before it went in),
     ``entered`` (s, when the peg went into the hole; NaN if never), ``bottom_reached`` (s, the first sample the
     bottom bears it; NaN if never), ``depth_reached`` (m, below the surface, at the end), ``peak_lateral_force`` (N,
-    the largest horizontal force while inside: the walls', and the bottom's friction when the peg slides on it), ``final_force`` (3,) N: ``h_e`` at the end."""
+    the largest horizontal force while inside: the walls', and the bottom's friction when the peg slides on it),
+    ``final_force`` (3,) N: ``h_e`` at the end."""
     s = getattr(result, "surface", None)
     if s is None or s.hole is None:
         raise ScaraError("insertion_summary needs a run of simulate_contact on a Surface with a Hole")

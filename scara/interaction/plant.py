@@ -32,9 +32,9 @@ def tool_state(t1, t2, d3, u, a1, a2, d0):
 
 @kernel
 def contact_acceleration(t1, t2, d3, u, t, pc, a1, a2, d0, env, inside):
-    """``qdd = B^-1 (tau + J^T f - C qd - F qd - g)`` at the configuration ``(t1, t2, d3)`` (theta4 enters
-    nothing) with the joint velocities ``u`` and torque ``t`` (4-tuples), ``f = -h_e`` the environment's force on
-    the tool (:func:`.environment.contact_force_kernel`): ``(qdd, code, f)``."""
+    """``qdd = B^-1 (tau + J^T f - C qd - F qd - g)`` (the book's (eq-int-plant)) at the configuration ``(t1, t2,
+    d3)`` (theta4 enters nothing) with the joint velocities ``u`` and torque ``t`` (4-tuples), ``f = -h_e`` the
+    environment's force on the tool (:func:`.environment.contact_force_kernel`): ``(qdd, code, f)``."""
     px, py, pz, vx, vy, vz, J11, J12, J21, J22 = tool_state(t1, t2, d3, u, a1, a2, d0)
     fx, fy, fz = contact_force_kernel(px, py, pz, vx, vy, vz, env, inside)
     tt = (t[0] + J11 * fx + J21 * fy, t[1] + J12 * fx + J22 * fy, t[2] - fz, t[3])

@@ -44,7 +44,8 @@ def z_axis(plant: ScaraParams | None = None) -> tuple:
 
 @kernel
 def plant_step(m, c, k, d, dt, phi, gamma):
-    """The exact step over ``dt`` of ``m z_ddot = u - k z - (d + c) z_dot`` with ``u`` held: ``phi`` (2, 2) and
+    """The exact step over ``dt`` of ``m z_ddot = u - k z - (d + c) z_dot`` with ``u`` held (the plant of the
+    book's (eq-int-sampled)): ``phi`` (2, 2) and
     ``gamma`` (2,) of ``exp([[0, 1, 0], [-k/m, -(d+c)/m, 1/m], [0, 0, 0]] dt)`` (its first two rows), by scaling
     and squaring of the Taylor series (degree 20 on a matrix of norm below 1/2: the series' remainder is below
     the rounding)."""

@@ -55,8 +55,9 @@ def sensor_coupling(bias, q, p=None) -> np.ndarray:
 
 def elastic_equilibrium(K_P, x_d, surface: Surface | None = None, offset=None) -> tuple:
     """The rest pose ``x`` (4,) and force ``h_e`` (3,) N of a law that shows the stiffness ``K_P`` (4,) (N/m, N m/rad)
-    about ``x_d`` (4,) to the elastic surface: compliance control (Siciliano et al., sec. 9.2.2),
-    impedance control and admittance control (sec. 9.3, with their ``K_P``, ``K_Pd``) with an ideal sensor.
+    about ``x_d`` (4,) to the elastic surface (the book's (eq-int-equilibrium), (eq-int-series)): compliance control
+    (Siciliano et al., sec. 9.2.2), impedance control and admittance control (sec. 9.3, with their ``K_P``,
+    ``K_Pd``) with an ideal sensor.
 
     ``x = (K_P + K)^-1 (K_P x_d + K x_r)`` and ``h_e = K (x - x_r) = K (K_P + K)^-1 K_P (x_d - x_r)``: the force is
     the surface's stiffness times the penetration the law settles at. When ``x_d`` is not below the surface the
@@ -83,11 +84,11 @@ def elastic_equilibrium(K_P, x_d, surface: Surface | None = None, offset=None) -
 
 
 def force_equilibrium(f_d, surface: Surface | None = None, sensor: ForceSensor | None = None) -> tuple:
-    """The rest height ``z`` (m) and force ``h_e`` (3,) N of force control with integral action (Siciliano et al.,
-    sec. 9.4.1-9.4.2) or of parallel control (sec. 9.4.3) asked for ``f_d`` (3,) N (a number: its z entry) along
-    the surface's normal: the integral makes the *measured* force ``f_d``, so the true ``h_z = f_d,z - b_z``
-    (``b`` the sensor's bias: the force error ``f_d - h_e`` is exactly the bias), and the elastic surface sets
-    ``z = height + h_z / k_e``. ``f_d,z`` must press (``f_d,z - b_z < 0``); the tangential entries of ``f_d`` must
+    """The rest height ``z`` (m) and force ``h_e`` (3,) N of force control with integral action (the book's
+    (eq-int-force-rest); Siciliano et al., sec. 9.4.1-9.4.2) or of parallel control (sec. 9.4.3) asked for
+    ``f_d`` (3,) N (a number: its z entry) along the surface's normal: the integral makes the *measured* force
+    ``f_d``, so the true ``h_z = f_d,z - b_z`` (``b`` the sensor's bias: the force error ``f_d - h_e`` is exactly
+    the bias), and the elastic surface sets ``z = height + h_z / k_e``. ``f_d,z`` must press (``f_d,z - b_z < 0``); the tangential entries of ``f_d`` must
     be 0 (a surface without friction at rest bears no tangential force).
 
     >>> z, h = force_equilibrium(-10.0, sensor=ForceSensor())
