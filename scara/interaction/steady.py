@@ -88,8 +88,8 @@ def force_equilibrium(f_d, surface: Surface | None = None, sensor: ForceSensor |
     (eq-int-force-rest); Siciliano et al., sec. 9.4.1-9.4.2) or of parallel control (sec. 9.4.3) asked for
     ``f_d`` (3,) N (a number: its z entry) along the surface's normal: the integral makes the *measured* force
     ``f_d``, so the true ``h_z = f_d,z - b_z`` (``b`` the sensor's bias: the force error ``f_d - h_e`` is exactly
-    the bias), and the elastic surface sets ``z = height + h_z / k_e``. ``f_d,z`` must press (``f_d,z - b_z < 0``); the tangential entries of ``f_d`` must
-    be 0 (a surface without friction at rest bears no tangential force).
+    the bias), and the elastic surface sets ``z = height + h_z / k_e``. ``f_d,z`` must press (``f_d,z - b_z < 0``);
+    the tangential entries of ``f_d`` must be 0 (a surface without friction at rest bears no tangential force).
 
     >>> z, h = force_equilibrium(-10.0, sensor=ForceSensor())
     >>> round(float(z), 8), h.tolist()      # the sensor reads 0.5 N too much upward: the tool presses 10.5 N
