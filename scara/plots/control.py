@@ -367,7 +367,7 @@ def steady_state_figure(with_integral, without_integral, predicted: float, integ
 
 
 def joint_error_figure(results, predicted: dict | None = None, points: int = 1000, title: str | None = None,
-                       height: int = 880) -> go.Figure:
+                       height: int = 780) -> go.Figure:
     """The joint errors ``q_d - q`` of several runs together, one panel per joint (mrad for the revolute joints, mm
     for the quill), each run in its controller's colour and dash style; ``predicted`` (``{label: (4,) error at
     rest}``, optional) draws each run's predicted steady-state error of the quill as a dotted line in its colour
@@ -381,7 +381,7 @@ def joint_error_figure(results, predicted: dict | None = None, points: int = 100
     unknown = [k for k in predicted if k not in runs] if isinstance(predicted, dict) else predicted
     if unknown:
         raise ScaraError(f"predicted must map labels of the runs {list(runs)} to errors at rest; unknown: {unknown}")
-    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.05)
+    fig = make_subplots(rows=4, cols=1, shared_xaxes=True, vertical_spacing=0.035)  # room for each axis's title
     for label, r in runs.items():
         idx = thin(len(r.t), points)
         for j in range(4):

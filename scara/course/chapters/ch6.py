@@ -40,7 +40,8 @@ EXERCISES = (
              params=(Param("m_L", 5.0, **_PAYLOAD), _PD_POLE),
              answers=(Answer("sag_mm", "(a) the quill's sag at rest", "mm", 0.01,
                              shown="the chapter's text computes it for the book's numbers, with (eq-ctl-pdg-sag)"),
-                      Answer("ratio", "(b) that sag over the independent-joint PD's with the same gains", "", 0.01)),
+                      Answer("ratio", "(b) that sag over the independent-joint PD's with the same gains", "", 0.01,
+                             shown="the chapter's text compares the two sags for the book's numbers")),
              note="(a) At rest K_P e = g - g_hat: only the quill errs, by m_L g0 / K_P3 with K_P3 = omega^2 B_bar33. "
                   "(b) The independent PD carries m3 g0 with the same spring, so the ratio is m_L / (m_l3 + m_L). "
                   "(c) With an exact g_hat the rest is the set point itself, for any positive K_P (La Salle); K_P "
@@ -67,7 +68,9 @@ EXERCISES = (
     Exercise("ex-ctl-no-robust", DOC,
              params=(Param("m_L", 5.0, **_PAYLOAD),
                      Param("rho", 1e-4, "m/s²", ".0e", "the negligible robust term")),
-             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01),),
+             answers=(Answer("sag_mm", "the quill's sag at the final rest", "mm", 0.01,
+                             shown="the sections on PD with gravity compensation and computed torque print the same "
+                                   "sag for the book's numbers (the same quill spring, B_hat33 K_P3)"),),
              note="Without w the law is PD with a constant diagonal B_hat and gravity compensation without the "
                   "payload; at rest B_hat33 K_P3 e_z carries the weight: e_z = m_L g0 / (B_hat33 K_P3)."),
     Exercise("ex-ctl-wider-layer", DOC,
