@@ -34,6 +34,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import scara  # noqa: E402
 from scara import ScaraParams  # noqa: E402
 from scara import dynamics as dyn  # noqa: E402
+from scara import export as _export  # noqa: E402
 
 import libraries as L  # noqa: E402
 
@@ -48,12 +49,12 @@ NO_ROTORS = (0.0, 0.0, 0.0, 0.0)
 
 
 def random_states(n: int = 500, seed: int = 7, p: ScaraParams | None = None):
-    """``n`` random states ``(q, qd, qdd)``, each (n, 4): angles uniform in [-pi, pi], ``d3`` in [0, d0],
+    """``n`` random states ``(q, qd, qdd)``, each (n, 4): angles uniform in [-pi, pi], ``d3`` in the quill's stroke,
     joint rates uniform in [-3, 3] (m/s for d3: [-1, 1]), accelerations in [-10, 10] ([-3, 3])."""
     p = ScaraParams() if p is None else p
     rng = np.random.default_rng(seed)
     q = rng.uniform(-math.pi, math.pi, (n, 4))
-    q[:, 2] = rng.uniform(0.0, p.d0, n)
+    q[:, 2] = rng.uniform(p.d3_min, p.d3_max, n)
     scale_v = np.array([3.0, 3.0, 1.0, 3.0])
     scale_a = np.array([10.0, 10.0, 3.0, 10.0])
     qd = rng.uniform(-1.0, 1.0, (n, 4)) * scale_v
@@ -199,31 +200,9 @@ def dynamics_agreement(n: int = 300, seed: int = 11, p: ScaraParams | None = Non
 # ------------------------------------------------------------------------------------------------------
 # 3. rotors on
 # ------------------------------------------------------------------------------------------------------
-def rotor_coupling(p: ScaraParams | None = None) -> np.ndarray:
-    """``Delta_B`` (eq-verif-rotor-coupling): the part of the ``B`` of chapter 5 ((eq-dynamics) with the rotors of
-    (eq-dyn-rotors)) that a diagonal ``k_r^2 I_m`` leaves out, shape (4, 4).
-
-    Rotor i turns at ``omega_{i-1} + k_ri qd_i`` with ``omega_0 = 0``, ``omega_1 = qd1``,
-    ``omega_2 = omega_3 = qd1 + qd2``, so its kinetic energy ``I_mi (omega_{i-1} + k_ri qd_i)^2 / 2`` adds to B
-
-    * the diagonal ``k_ri^2 I_mi`` (what the libraries have),
-    * ``I_mi`` on every ``B_jl`` with ``j, l`` among the joints that turn link i-1 (rotor 2: joint 1;
-      rotors 3, 4: joints 1 and 2),
-    * ``k_ri I_mi`` on ``B_ji`` for those joints ``j``.
-
-    Written out: ``Delta_B11 = I_m2 + I_m3 + I_m4``, ``Delta_B12 = k_r2 I_m2 + I_m3 + I_m4``,
-    ``Delta_B22 = I_m3 + I_m4``, ``Delta_B13 = Delta_B23 = k_r3 I_m3``, ``Delta_B14 = Delta_B24 = k_r4 I_m4``,
-    zero elsewhere. It does not depend on ``q``, so it adds nothing to ``C`` or ``g``.
-    """
-    p = ScaraParams() if p is None else p
-    k, Im = p.k_r, p.I_m
-    D = np.zeros((4, 4))
-    D[0, 0] = Im[1] + Im[2] + Im[3]
-    D[0, 1] = k[1] * Im[1] + Im[2] + Im[3]
-    D[1, 1] = Im[2] + Im[3]
-    D[0, 2] = D[1, 2] = k[2] * Im[2]
-    D[0, 3] = D[1, 3] = k[3] * Im[3]
-    return np.triu(D) + np.triu(D, 1).T
+# ``Delta_B`` (eq-verif-rotor-coupling), the part of chapter 5's ``B`` that a diagonal ``k_r^2 I_m`` leaves out:
+# the package states it once, beside the exported files that lose it.
+rotor_coupling = _export.rotor_coupling
 
 
 def rotor_agreement(n: int = 300, seed: int = 13, p: ScaraParams | None = None) -> dict:
@@ -326,6 +305,9 @@ def all_agreement(n_kin: int = 500, n_dyn: int = 300) -> dict:
         rotors_on=rotor_agreement(n_dyn, p=pL),
         rotor_coupling=rotor_coupling(pL).tolist(),
         rotor_effect=rotor_effect(p=pL),
+        export_tolerance=EXPORT_TOLERANCE,
+        n_export=n_dyn,
+        export=export_agreement(n_dyn, p=pL),
     )
 
 
@@ -347,7 +329,314 @@ def _print(res: dict) -> None:
     print("  rotor coupling along the reference motion: max |Delta_B qdd| per joint "
           + ", ".join(f"{v:.3g}" for v in r["max_coupling_torque"])
           + "; as a share of max |tau| " + ", ".join(f"{100 * v:.2f}%" for v in r["ratio_max"]))
+    if "export" in res:
+        print(f"  the exported files (relative to our largest entry; tolerance {res['export_tolerance']:.0e}), "
+              f"{res['n_export']} random states, 5 kg payload")
+        for tool, e in res["export"].items():
+            print(f"    {tool:15s} " + "  ".join(f"{k}={v:.1e}" for k, v in e.items()))
+    for key, e in res.get("mujoco_runs", {}).items():
+        print(f"  MuJoCo, {e['title']}: rotor-free {e['rotor_free']:.1e} (round-off bound {e['roundoff_bound']:.1e}); "
+              f"rotors on {e['difference']:.2e} <= bound {e['bound']:.2e} (armature effect {e['armature_effect']:.2e}, "
+              f"MuJoCo vs our model less the coupling {e['mujoco_vs_less']:.1e})")
 
 
 if __name__ == "__main__":
     _print(all_agreement())
+
+
+# ------------------------------------------------------------------------------------------------------
+# 4. the exported files: Pinocchio reads the URDF, MuJoCo the MJCF
+# ------------------------------------------------------------------------------------------------------
+EXPORT_TOOLS = ("pinocchio_urdf", "mujoco_mjcf")
+#: The bound of every comparison with the exported files, relative to the largest entry of our quantity.
+EXPORT_TOLERANCE = 1e-12
+
+
+class _MuJoCo:
+    """MuJoCo's terms of the exported MJCF: ``fkine`` (body ``link4``), ``inertia`` (``mj_fullM``), ``gravity``
+    (the bias force at rest), ``coriolis`` (the Christoffel matrix, recovered from the bias forces, below),
+    ``rne`` (``mj_inverse``, damping included) and ``accel`` (``mj_forward``'s ``qacc``)."""
+
+    def __init__(self, p, rotors=True):
+        import mujoco
+
+        self.mj = mujoco
+        self.model, self.data = L.mujoco_model(p, rotors)
+        self.free, self.free_data = L.mujoco_model(p, rotors)
+        self.free.opt.gravity[:] = 0.0  # the bias force without gravity is C(q, qd) qd alone
+        self.link4 = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, "link4")
+
+    def _forward(self, q, qd=None, tau=None, model=None, data=None):
+        """``mj_forward`` at ``(q, qd)`` with ``tau`` applied as a generalised force (``qfrc_applied``: the motors'
+        ``ctrlrange`` would clip the random torques of the checks)."""
+        model = self.model if model is None else model
+        data = self.data if data is None else data
+        data.qpos[:] = q
+        data.qvel[:] = 0.0 if qd is None else qd
+        data.ctrl[:] = 0.0
+        data.qfrc_applied[:] = 0.0 if tau is None else tau
+        self.mj.mj_forward(model, data)
+        return data
+
+    def fkine(self, q):
+        d = self._forward(q)
+        T = np.eye(4)
+        T[:3, :3] = d.xmat[self.link4].reshape(3, 3)
+        T[:3, 3] = d.xpos[self.link4]
+        return T
+
+    def inertia(self, q):
+        d = self._forward(q)
+        M = np.zeros((4, 4))
+        self.mj.mj_fullM(self.model, d, M)
+        return M
+
+    def gravload(self, q):
+        return self._forward(q).qfrc_bias.copy()
+
+    def _c(self, q, v):
+        return self._forward(q, v, model=self.free, data=self.free_data).qfrc_bias.copy()
+
+    def coriolis(self, q, qd):
+        """``C(q, qd)`` of the Christoffel symbols: MuJoCo gives only ``c(v) = C(q, v) v = sum_jk Gamma_ijk v_j v_k``;
+        since ``Gamma_ijk = Gamma_ikj``, ``Gamma_ijj = c_i(e_j)`` and ``2 Gamma_ijk = c_i(e_j + e_k) - c_i(e_j) -
+        c_i(e_k)``, and ``C_ij = sum_k Gamma_ijk qd_k`` (chapter 5, (eq-dyn-christoffel))."""
+        E = np.eye(4)
+        G = np.zeros((4, 4, 4))
+        single = [self._c(q, E[j]) for j in range(4)]
+        for j in range(4):
+            G[:, j, j] = single[j]
+            for k in range(j + 1, 4):
+                G[:, j, k] = G[:, k, j] = 0.5 * (self._c(q, E[j] + E[k]) - single[j] - single[k])
+        return G @ np.asarray(qd, dtype=float)
+
+    def rne(self, q, qd, qdd):
+        d = self._forward(q, qd)
+        d.qacc[:] = qdd
+        self.mj.mj_inverse(self.model, d)
+        return d.qfrc_inverse.copy()
+
+    def accel(self, q, qd, tau):
+        return self._forward(q, qd, tau).qacc.copy()
+
+
+class _PinUrdf(_Pin):
+    """:class:`_Pin` on the model Pinocchio builds from the exported URDF (unbounded joints: ``cos, sin``)."""
+
+    def __init__(self, p, rotors):
+        import pinocchio as pin
+
+        self.pin = pin
+        self.model, self.data = L.pinocchio_from_urdf(p, rotors)
+        self.ee = self.model.getFrameId("link4")
+        self.F = self.model.damping.copy()  # the file's joint damping
+        self._q = lambda q: L.pinocchio_configuration(self.model, q)
+        for name in ("fkine", "jacob0", "inertia", "gravload"):
+            setattr(self, name, (lambda f: lambda q: f(self._q(q)))(getattr(super(), name)))
+        for name in ("coriolis", "rne", "accel"):
+            setattr(self, name, (lambda f: lambda q, *a: f(self._q(q), *a))(getattr(super(), name)))
+
+
+def export_tool(name: str, p: ScaraParams | None = None, rotors: bool = True):
+    """The exported arm ``p`` loaded by ``name`` (:data:`EXPORT_TOOLS`), with the calls of :func:`library`."""
+    p = ScaraParams() if p is None else p
+    if name == "pinocchio_urdf":
+        return _PinUrdf(p, rotors)
+    if name == "mujoco_mjcf":
+        return _MuJoCo(p, rotors)
+    raise ValueError(f"unknown tool {name!r}; known: {EXPORT_TOOLS}")
+
+
+def _rel(a, b) -> float:
+    """``max |a - b| / max |b|`` (0 when both vanish)."""
+    scale = float(np.max(np.abs(b)))
+    diff = float(np.max(np.abs(np.asarray(a) - b)))
+    return diff / scale if scale > 0 else diff
+
+
+def export_agreement(n: int = 200, seed: int = 17, p: ScaraParams | None = None) -> dict:
+    """The exported files against ``scara`` at ``n`` random states, per tool, each relative to the largest entry of
+    ours (:func:`_rel`): rotors off (``I_m = 0``): ``fkine``, ``inertia``, ``coriolis``, ``gravity``,
+    ``inverse_dynamics`` (friction included), ``forward_dynamics``; rotors on:
+    ``inertia_minus_coupling`` (``B_ours - B_tool - Delta_B``, relative to ``B_ours``), ``coriolis_rotors`` and
+    ``gravity_rotors`` (unchanged by rotors) and ``inertia_difference`` (``max |B_ours - B_tool|``, absolute)."""
+    p = ScaraParams() if p is None else p
+    bare = p.replace(I_m=NO_ROTORS)
+    D = rotor_coupling(p)
+    q, qd, qdd = random_states(n, seed, p)
+    out = {}
+    for name in EXPORT_TOOLS:
+        off, on = export_tool(name, bare, rotors=False), export_tool(name, p, rotors=True)
+        e = dict(fkine=0.0, inertia=0.0, coriolis=0.0, gravity=0.0, inverse_dynamics=0.0, forward_dynamics=0.0,
+                 inertia_minus_coupling=0.0, coriolis_rotors=0.0, gravity_rotors=0.0, inertia_difference=0.0)
+        for qk, qdk, qddk in zip(q, qd, qdd):
+            B, C, g = dyn.inertia(qk, bare), dyn.coriolis(qk, qdk, bare), dyn.gravity(qk, bare)
+            tau = dyn.inverse_dynamics(qk, qdk, qddk, bare)
+            Bp = dyn.inertia(qk, p)
+            Bt = on.inertia(qk)
+            got = dict(fkine=(off.fkine(qk), scara.fkine(qk, bare)), inertia=(off.inertia(qk), B),
+                       coriolis=(off.coriolis(qk, qdk), C), gravity=(off.gravload(qk), g),
+                       inverse_dynamics=(off.rne(qk, qdk, qddk), tau),
+                       forward_dynamics=(off.accel(qk, qdk, tau), qddk),
+                       inertia_minus_coupling=(Bt + D, Bp), coriolis_rotors=(on.coriolis(qk, qdk), C),
+                       gravity_rotors=(on.gravload(qk), g))
+            for what, (a, b) in got.items():
+                e[what] = max(e[what], _rel(a, b))
+            e["inertia_difference"] = max(e["inertia_difference"], _maxabs(Bp - Bt))
+        out[name] = e
+    return out
+
+
+# ------------------------------------------------------------------------------------------------------
+# 5. MuJoCo as a fourth peer of the engine: the same closed loops on the exported MJCF
+# ------------------------------------------------------------------------------------------------------
+def _law_loop(controller, ours, step, q0, qd0) -> dict:
+    """Drive ``step(q, qd, tau) -> (q, qd)`` (one sampling period with ``tau`` held) with ``controller``'s compiled
+    law as :func:`scara.simulate` does in ``ours``: the same reference rows, start state and sampling. Returns
+    ``q``, ``qd``, ``tau`` (N, 4) and ``seconds`` (CPU time of the loop)."""
+    import time
+
+    from scara._simulate.interface import law_arrays
+
+    n = len(ours.t)
+    dt = ours.dt
+    ref = np.ascontiguousarray(ours.reference)
+    (gains, model_array, state, work), sig, _ = law_arrays(controller, n)
+    law = controller.law
+    Q, QD, TAU = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 4))
+    tau = np.zeros(4)
+    q, qd = np.array(q0, dtype=float), np.array(qd0, dtype=float)
+    t0 = time.process_time()
+    for k in range(n):
+        code = law(k, k * dt, dt, q, qd, ref[k], gains, model_array, state, work, sig[k], tau)
+        if code != 0:
+            raise RuntimeError(f"{controller.name} failed at sample {k} (code {code})")
+        Q[k], QD[k], TAU[k] = q, qd, tau
+        if k < n - 1:
+            q, qd = step(q, qd, tau)
+    return dict(q=Q, qd=QD, tau=TAU, seconds=time.process_time() - t0)
+
+
+def mujoco_closed_loop(controller, ours, rotors: bool = True) -> dict:
+    """Run ``controller`` on MuJoCo's model of the exported ``ours.plant`` as ``scara.simulate`` ran it in
+    ``ours``: at each sample the compiled law computes ``tau`` from MuJoCo's state, which is held over one
+    ``mj_step`` (the MJCF's RK4, one step per sample, as the engine). ``rotors=False`` exports the plant with
+    ``I_m = 0`` (then ``ours`` must have been run on that plant).
+
+    Returns :func:`_law_loop`'s dict and ``clipped``: whether a torque left the motors' ``ctrlrange`` (MuJoCo would
+    have clipped it, and the runs could not be compared)."""
+    import mujoco
+
+    model, data = L.mujoco_model(ours.plant, rotors=rotors)
+    model.opt.timestep = ours.dt
+    lo, hi = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
+    clipped = [False]
+
+    def step(q, qd, tau):
+        data.qpos[:], data.qvel[:], data.ctrl[:] = q, qd, tau
+        clipped[0] |= bool(np.any(tau < lo) or np.any(tau > hi))
+        mujoco.mj_step(model, data)
+        return data.qpos.copy(), data.qvel.copy()
+
+    out = _law_loop(controller, ours, step, ours.q[0], ours.qd[0])
+    out["clipped"] = clipped[0]
+    return out
+
+
+def coupling_free_closed_loop(controller, ours) -> dict:
+    """The loop of :func:`mujoco_closed_loop` integrated in Python with ``scara``'s own model *less* the rotor
+    coupling: ``qdd = (B - Delta_B)^-1 (tau - C qd - F qd - g)`` (:func:`scara.export.rotor_coupling`), one classical
+    RK4 step per sample with the torque held, as the engine and MuJoCo step. This is exactly the model the MJCF
+    holds (rotors as armature), computed without MuJoCo."""
+    p = ours.plant
+    D = rotor_coupling(p)
+    dp = dyn.dynamic_array(p)
+    work = dyn.dynamics_workspace()
+    zero = np.zeros(4)
+    B, n = np.empty((4, 4)), np.empty(4)
+
+    def accel(q, qd, tau):  # the compiled kernels behind scara.inertia and scara.inverse_dynamics
+        dyn.inertia_kernel(q, dp, B)
+        dyn.inverse_dynamics_kernel(q, qd, zero, dp, work, n)
+        return np.linalg.solve(B - D, tau - n)
+
+    def step(q, qd, tau):
+        h = ours.dt
+        a1 = accel(q, qd, tau)
+        v2 = qd + 0.5 * h * a1
+        a2 = accel(q + 0.5 * h * qd, v2, tau)
+        v3 = qd + 0.5 * h * a2
+        a3 = accel(q + 0.5 * h * v2, v3, tau)
+        v4 = qd + h * a3
+        a4 = accel(q + h * v3, v4, tau)
+        return q + h / 6.0 * (qd + 2.0 * v2 + 2.0 * v3 + v4), qd + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+
+    return _law_loop(controller, ours, step, ours.q[0], ours.qd[0])
+
+
+#: Unit round-off of double precision, 2^-53.
+UNIT_ROUNDOFF = 2.0 ** -53
+
+
+def _agreement_runs(traj=None):
+    """The three runs of the fourth peer, as ``{key: (title, controller, plant -> SimulationResult)}``: the PD +
+    gravity loop of chapter 5's reference run (the model does not know the 5 kg payload), the quill's free fall of
+    chapter 5 (no torque, from d3 = 0, 0.5 s: the rotor-free quill reaches the end of its stroke at 0.52 s) and
+    chapter 6's computed torque with the unknown payload, each along the reference path of chapter 3 tracked
+    through the second-order CLIK."""
+    from scara import clik2
+    from scara._simulate import PDGravityController, TorqueController, simulate
+    from scara.control.classic import ComputedTorqueController
+    from scara.trajectory import reference_trajectory
+
+    traj = reference_trajectory() if traj is None else traj
+    ref = clik2(traj)
+    q_drop = np.array([ref.q[0][0], ref.q[0][1], 0.0, 0.0])
+    return {
+        "pd_gravity": ("PD + gravity, reference run (chapter 5)", PDGravityController(),
+                       lambda plant, c: simulate(c, traj, plant, joint_reference=ref)),
+        "free_fall": ("free fall of the quill (chapter 5)", TorqueController(),
+                      lambda plant, c: simulate(c, plant=plant, duration=0.5, q0=q_drop)),
+        "computed_torque": ("computed torque (chapter 6)", ComputedTorqueController(),
+                            lambda plant, c: simulate(c, traj, plant, joint_reference=ref)),
+    }
+
+
+def mujoco_agreement(traj=None, keys=None) -> dict:
+    """MuJoCo as a fourth peer of the engine, per run of :func:`_agreement_runs` (plant: the book's arm with the
+    5 kg payload):
+
+    * ``rotor_free``: ``max |q_ours - q_mujoco|`` with ``I_m = 0`` in both (nothing approximated), against
+      ``roundoff_bound = samples x 2^-53 x max |q|``: both integrate by the same classical RK4, one step per
+      1 ms sample with the torque held, so the integrators' errors (of order ``h^4`` per step) are the same
+      numbers and only round-off, at most one unit per step in the last place, can separate the runs;
+    * with the book's rotors, which MuJoCo holds as armature: ``difference = max |q_ours - q_mujoco|``, the
+      ``armature_effect = max |q_ours - q_less|`` of the same loop on our model less the coupling
+      (:func:`coupling_free_closed_loop`), ``mujoco_vs_less`` (round-off again) and
+      ``bound = armature_effect + roundoff_bound``;
+    * ``mujoco_seconds``, ``ours_seconds`` (CPU time of the two loops of the rotors-on run).
+    """
+    from scara import ScaraParams
+
+    plant = ScaraParams().with_payload(5.0)
+    bare = plant.replace(I_m=NO_ROTORS)
+    out = {}
+    for key, (title, controller, run) in _agreement_runs(traj).items():
+        if keys is not None and key not in keys:
+            continue
+        free = run(bare, controller)
+        mj_free = mujoco_closed_loop(controller, free, rotors=False)
+        ours = run(plant, controller)
+        mj = mujoco_closed_loop(controller, ours)
+        less = coupling_free_closed_loop(controller, ours)
+        n = len(ours.t)
+        roundoff = n * UNIT_ROUNDOFF * float(np.max(np.abs(ours.q)))
+        diff = np.max(np.abs(ours.q - mj["q"]), axis=0)
+        arm = float(np.max(np.abs(ours.q - less["q"])))
+        out[key] = dict(title=title, duration_s=float(ours.t[-1]), samples=n,
+                        rotor_free=float(np.max(np.abs(free.q - mj_free["q"]))), roundoff_bound=roundoff,
+                        difference=float(diff.max()), difference_per_joint=diff.tolist(), armature_effect=arm,
+                        mujoco_vs_less=float(np.max(np.abs(mj["q"] - less["q"]))), bound=arm + roundoff,
+                        clipped=bool(mj["clipped"] or mj_free["clipped"]), mujoco_seconds=mj["seconds"],
+                        ours_seconds=float(ours.elapsed))
+    return out

@@ -237,3 +237,62 @@ class NumpyRobot:
     def accel(self, q, qd, tau):
         """Forward dynamics ``qdd = B^-1 (tau - C qd - F qd - g)``."""
         return np.linalg.solve(self.inertia(q), tau - self.coriolis(q, qd) @ qd - self.F * qd - self.gravity(q))
+
+
+# ------------------------------------------------------------------------------------------------------
+# the exported files (scara.export), loaded by the tools they are for
+# ------------------------------------------------------------------------------------------------------
+def urdf_armature(urdf: str) -> np.ndarray:
+    """The reflected rotor inertia a URDF written by ``scara.export.to_urdf`` states in its transmissions,
+    ``gear_ratio^2 rotor_inertia`` per joint (Drake's reading of them), read back from the text."""
+    import xml.etree.ElementTree as ET
+
+    ns = {"drake": "http://drake.mit.edu"}
+    out = []
+    for tr in ET.fromstring(urdf).findall("transmission"):
+        act = tr.find("actuator")
+        k = float(act.find("drake:gear_ratio", ns).get("value"))
+        Im = float(act.find("drake:rotor_inertia", ns).get("value"))
+        out.append(k * k * Im)
+    return np.array(out)
+
+
+def pinocchio_from_urdf(p: ScaraParams | None = None, rotors: bool = True):
+    """Pinocchio's model of ``scara.export.to_urdf(p)`` (``buildModelFromXML``), gravity ``-g0`` along the base z
+    (URDF holds none) and the armature its transmissions state. With ``rotors=False`` the exported arm has
+    ``I_m = 0``. Continuous joints become Pinocchio's unbounded revolute joints (``nq = 2``: ``cos, sin``);
+    :func:`pinocchio_configuration` maps ``q`` to them. Returns ``(model, data)``."""
+    import pinocchio as pin
+
+    from scara.export import to_urdf
+
+    p = _params(p)
+    if not rotors:
+        p = p.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    text = to_urdf(p)
+    model = pin.buildModelFromXML(text)
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -p.g0]), np.zeros(3))
+    model.armature = urdf_armature(text)
+    return model, model.createData()
+
+
+def pinocchio_configuration(model, q) -> np.ndarray:
+    """``q`` (4,) of chapter 1 as the configuration vector of ``model`` (unbounded joints as ``cos, sin``)."""
+    out = []
+    for j, qj in zip(model.joints[1:], q):
+        out.extend((math.cos(qj), math.sin(qj)) if j.nq == 2 else (qj,))
+    return np.array(out)
+
+
+def mujoco_model(p: ScaraParams | None = None, rotors: bool = True):
+    """MuJoCo's model of ``scara.export.to_mjcf(p)`` (``MjModel.from_xml_string``); ``rotors=False`` exports the
+    arm with ``I_m = 0``. Returns ``(model, data)``."""
+    import mujoco
+
+    from scara.export import to_mjcf
+
+    p = _params(p)
+    if not rotors:
+        p = p.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    model = mujoco.MjModel.from_xml_string(to_mjcf(p))
+    return model, mujoco.MjData(model)

@@ -25,6 +25,8 @@ Method
     runs the same loop in Python with its own gravity (controller) and forward dynamics (plant). Every
     loop, ours included, reuses the first RK4 stage as the recorded acceleration (4 forward-dynamics
     evaluations per step).
+  - MuJoCo runs the same loop on the exported MJCF (``scara.export.to_mjcf``): gravity by ``mj_rne`` at rest for
+    the controller, and its own ``mj_step`` (RK4 in C, one step per sample, torque held in ``ctrl``) for the plant.
   - So that the loops must produce the same motion, the closed-loop plant has its rotor inertias set to
     zero here (the libraries would otherwise miss the rotor coupling, see ``agreement.py``); parameter
     values do not change the cost of a step. Each run's largest joint difference from ours is reported.
@@ -105,7 +107,7 @@ def versions() -> dict:
     import importlib.metadata as md
 
     out = {}
-    for name in ("scara", "numpy", "scipy", "numba", "roboticstoolbox-python", "spatialmath-python", "pin"):
+    for name in ("scara", "numpy", "scipy", "numba", "roboticstoolbox-python", "spatialmath-python", "pin", "mujoco"):
         try:
             out[name] = md.version(name)
         except md.PackageNotFoundError:
@@ -206,6 +208,43 @@ class ToolboxCalls:
         return self.robot.accel(q, qd, tau)
 
 
+class MuJoCoCalls:
+    """MuJoCo on the exported MJCF (``scara.export.to_mjcf``, via ``libraries.mujoco_model``): gravity by ``mj_rne``
+    at rest (controller), and the plant stepped by ``mj_step``: MuJoCo's own RK4 in C, one step per sample with the
+    torque held in ``ctrl`` (friction is the MJCF's joint damping)."""
+
+    name = "mujoco"
+
+    def __init__(self, p, rotors=True):
+        import mujoco
+
+        self.mj = mujoco
+        self.model, self.data = L.mujoco_model(p, rotors)
+        self.out = np.empty(self.model.nv)
+
+    def gravity(self, q):
+        mj, m, d = self.mj, self.model, self.data
+        d.qpos[:] = q
+        d.qvel[:] = 0.0
+        mj.mj_kinematics(m, d)
+        mj.mj_comPos(m, d)
+        mj.mj_comVel(m, d)
+        mj.mj_rne(m, d, 0, self.out)
+        return self.out.copy()
+
+    def step(self, q, qd, tau, h):
+        """One ``mj_step`` of ``h`` (the MJCF's timestep) from ``(q, qd)`` with ``tau`` held: ``(q, qd, qdd)``, ``qdd``
+        the acceleration at the start (MuJoCo's first RK4 stage)."""
+        m, d = self.model, self.data
+        if m.opt.timestep != h:
+            m.opt.timestep = h
+        d.qpos[:] = q
+        d.qvel[:] = qd
+        d.ctrl[:] = tau
+        self.mj.mj_step(m, d)
+        return d.qpos.copy(), d.qvel.copy(), d.qacc.copy()
+
+
 class NumpyCalls:
     """The plain-numpy twin (``libraries.NumpyRobot``): the book's closed forms, arrays built per call."""
 
@@ -250,7 +289,8 @@ def clik_loop(lib, xr, vr, q0, dt, K, steps):
 
 
 def closed_loop(lib_plant, lib_ctrl, ref, q0, qd0, dt, KP, KD, steps):
-    """PD + gravity at ``dt`` (ZOH) on the plant, one RK4 step per sample. Returns ``q`` (steps, 4)."""
+    """PD + gravity at ``dt`` (ZOH) on the plant, one RK4 step per sample (the library's own ``step`` where it has
+    one, MuJoCo's ``mj_step``; else RK4 in Python on its ``accel``). Returns ``q`` (steps, 4)."""
     Q = np.empty((steps, 4))
     QD = np.empty((steps, 4))
     QDD = np.empty((steps, 4))
@@ -258,13 +298,19 @@ def closed_loop(lib_plant, lib_ctrl, ref, q0, qd0, dt, KP, KD, steps):
     q = np.array(q0, dtype=float)
     qd = np.array(qd0, dtype=float)
     h = dt
-    fd = lib_plant.accel
+    step = getattr(lib_plant, "step", None)
+    fd = None if step is not None else lib_plant.accel
     for k in range(steps):
         Q[k] = q
         QD[k] = qd
         r = ref[k]
         tau = KP * (r[0:4] - q) + KD * (r[4:8] - qd) + lib_ctrl.gravity(q)
         TAU[k] = tau
+        if step is not None:  # the library steps its own RK4 (MuJoCo's mj_step)
+            if k == steps - 1:
+                break
+            q, qd, QDD[k] = step(q, qd, tau, h)
+            continue
         a1 = fd(q, qd, tau)
         QDD[k] = a1
         if k == steps - 1:
@@ -447,7 +493,7 @@ def bench_closed_loop(traj, repeats: int, budget: float) -> dict:
     q0, qd0 = ref[0, :4].copy(), ref[0, 4:8].copy()
     loop_alone = [ours().elapsed for _ in range(repeats)]
     pairs = {cls.name: (cls(plant, rotors=False), cls(ctrl_model, rotors=False))
-             for cls in (NumpyCalls, PinocchioCalls, ToolboxCalls)}
+             for cls in (NumpyCalls, PinocchioCalls, ToolboxCalls, MuJoCoCalls)}
 
     class _Pair:
         def __init__(self, name):
@@ -458,8 +504,10 @@ def bench_closed_loop(traj, repeats: int, budget: float) -> dict:
         ours, [_Pair(k) for k in pairs],
         lambda lib, s: closed_loop(lib.plant, lib.ctrl, ref, q0, qd0, traj.dt, KP, KD, s), n, res.q, repeats,
         budget, 100)
-    return _run_entry("scara.simulate(PDGravityController(), ...)", all_ours, loop_alone, libs,
-                      "Python loop: {name} gravity (controller) + forward dynamics (plant), RK4", n)
+    out = _run_entry("scara.simulate(PDGravityController(), ...)", all_ours, loop_alone, libs,
+                     "Python loop: {name} gravity (controller) + forward dynamics (plant), RK4", n)
+    out["mujoco"]["call"] = "Python loop: mujoco gravity (mj_rne, controller) + mj_step (plant, its RK4 in C)"
+    return out
 
 
 # ------------------------------------------------------------------------------------------------------
@@ -497,7 +545,9 @@ def print_tables(res: dict) -> None:
         r = res[key]
         print(f"\n{title}, {r['_samples']} samples")
         print(f"  {'':10s}{'time':>12s}{'ours faster by':>16s}{'max |q - q_ours|':>18s}  note")
-        for name in ("ours", "numpy", "pinocchio", "toolbox"):
+        for name in ("ours", "numpy", "pinocchio", "toolbox", "mujoco"):
+            if name not in r:
+                continue
             e = r[name]
             note = (f"extrapolated from {e['steps_timed']} steps" if e["extrapolated"] else "whole run")
             if name == "ours":
@@ -533,6 +583,8 @@ def main(argv=None) -> dict:
     if not args.no_agreement:
         print("agreement ...", flush=True)
         res["agreement"] = A.all_agreement(*((100, 60) if args.quick else (500, 300)))
+        print("MuJoCo runs ...", flush=True)
+        res["agreement"]["mujoco_runs"] = A.mujoco_agreement()
     traj = reference_trajectory()
     print("per-call costs ...", flush=True)
     res["per_call"] = bench_per_call(repeats)

@@ -18,6 +18,7 @@ __version__ = "0.1.0"
 _EAGER = ("errors", "params", "kinematics", "_manipulability")
 _LAZY = ("trajectory", "_clik", "dynamics", "_simulate", "control", "interaction")
 #: sub-modules that are attributes of the package under their own name (``scara.dynamics``)
-_SUBMODULES = ("errors", "params", "kinematics", "trajectory", "dynamics", "control", "interaction", "identification")
+_SUBMODULES = ("errors", "params", "kinematics", "trajectory", "dynamics", "control", "interaction", "identification",
+               "export")
 
 __all__, __getattr__, __dir__ = _public_names(__name__, _EAGER, _LAZY, _SUBMODULES)

@@ -1,5 +1,5 @@
 """Agreement of scara with Peter Corke's Robotics Toolbox for Python and Pinocchio (the verification appendix,
-section The same robot in two other libraries).
+section The same robot in two other libraries); the exported files and MuJoCo are tests/agreement/test_export.py.
 
 The comparisons need the optional extras (``pip install -r requirements-bench.txt``); without them those
 tests are skipped with the reason, so the main CI stays lean. The check of the stored
@@ -248,8 +248,17 @@ def test_stored_results_are_complete_and_consistent():
             assert max(e.values()) < ag["tolerance"], (group, lib)
     for lib, e in ag["rotors_on"].items():
         assert e["torque_minus_coupling"] < ag["tolerance"], lib
+    # the exported files (relative differences) and MuJoCo's runs of the engine's loops
+    assert set(ag["export"]) == {"pinocchio_urdf", "mujoco_mjcf"}
+    for tool, e in ag["export"].items():
+        assert max(v for k, v in e.items() if k != "inertia_difference") < ag["export_tolerance"], tool
+    assert set(ag["mujoco_runs"]) == {"pd_gravity", "free_fall", "computed_torque"}
+    for key, e in ag["mujoco_runs"].items():
+        assert e["rotor_free"] <= e["roundoff_bound"] and e["difference"] <= e["bound"], key
+        assert not e["clipped"], key
+    assert res["versions"]["mujoco"]
     for key in ("clik", "closed_loop"):
-        for name in ("ours", "numpy", "pinocchio", "toolbox"):
+        for name in ("ours", "numpy", "pinocchio", "toolbox") + (("mujoco",) if key == "closed_loop" else ()):
             e = res[key][name]
             assert e["seconds"] > 0 and math.isfinite(e["ratio_to_ours"])
             assert e["max_q_difference"] < 1e-8, (key, name)
