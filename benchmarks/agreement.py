@@ -337,7 +337,8 @@ def _print(res: dict) -> None:
     for key, e in res.get("mujoco_runs", {}).items():
         print(f"  MuJoCo, {e['title']}: rotor-free {e['rotor_free']:.1e} (round-off bound {e['roundoff_bound']:.1e}); "
               f"rotors on {e['difference']:.2e} <= bound {e['bound']:.2e} (armature effect {e['armature_effect']:.2e}, "
-              f"MuJoCo vs our model less the coupling {e['mujoco_vs_less']:.1e})")
+              f"MuJoCo vs our model less the coupling {e['mujoco_vs_less']:.1e}); with MuJoCo's Euler in place of "
+              f"RK4, rotor-free {e['euler_difference']:.1e}")
 
 
 if __name__ == "__main__":
@@ -517,11 +518,12 @@ def _law_loop(controller, ours, step, q0, qd0) -> dict:
     return dict(q=Q, qd=QD, tau=TAU, seconds=time.process_time() - t0)
 
 
-def mujoco_closed_loop(controller, ours, rotors: bool = True) -> dict:
+def mujoco_closed_loop(controller, ours, rotors: bool = True, integrator: str | None = None) -> dict:
     """Run ``controller`` on MuJoCo's model of the exported ``ours.plant`` as ``scara.simulate`` ran it in
     ``ours``: at each sample the compiled law computes ``tau`` from MuJoCo's state, which is held over one
     ``mj_step`` (the MJCF's RK4, one step per sample, as the engine). ``rotors=False`` exports the plant with
-    ``I_m = 0`` (then ``ours`` must have been run on that plant).
+    ``I_m = 0`` (then ``ours`` must have been run on that plant). ``integrator`` replaces the MJCF's RK4 by another
+    of MuJoCo's (``"Euler"``, its default, or ``"implicitfast"``).
 
     Returns :func:`_law_loop`'s dict and ``clipped``: whether a torque left the motors' ``ctrlrange`` (MuJoCo would
     have clipped it, and the runs could not be compared)."""
@@ -529,6 +531,8 @@ def mujoco_closed_loop(controller, ours, rotors: bool = True) -> dict:
 
     model, data = L.mujoco_model(ours.plant, rotors=rotors)
     model.opt.timestep = ours.dt
+    if integrator is not None:
+        model.opt.integrator = getattr(mujoco.mjtIntegrator, f"mjINT_{integrator.upper()}")
     lo, hi = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
     clipped = [False]
 
@@ -614,6 +618,9 @@ def mujoco_agreement(traj=None, keys=None) -> dict:
       ``armature_effect = max |q_ours - q_less|`` of the same loop on our model less the coupling
       (:func:`coupling_free_closed_loop`), ``mujoco_vs_less`` (round-off again) and
       ``bound = armature_effect + roundoff_bound``;
+    * ``euler_difference``: the rotor-free run again with MuJoCo's default integrator, semi-implicit Euler, in
+      place of RK4: a first-order method, whose error per unit time is of order ``h`` (the bound the same-RK4
+      comparison does without);
     * ``mujoco_seconds``, ``ours_seconds`` (CPU time of the two loops of the rotors-on run).
     """
     from scara import ScaraParams
@@ -626,6 +633,7 @@ def mujoco_agreement(traj=None, keys=None) -> dict:
             continue
         free = run(bare, controller)
         mj_free = mujoco_closed_loop(controller, free, rotors=False)
+        mj_euler = mujoco_closed_loop(controller, free, rotors=False, integrator="Euler")
         ours = run(plant, controller)
         mj = mujoco_closed_loop(controller, ours)
         less = coupling_free_closed_loop(controller, ours)
@@ -635,6 +643,7 @@ def mujoco_agreement(traj=None, keys=None) -> dict:
         arm = float(np.max(np.abs(ours.q - less["q"])))
         out[key] = dict(title=title, duration_s=float(ours.t[-1]), samples=n,
                         rotor_free=float(np.max(np.abs(free.q - mj_free["q"]))), roundoff_bound=roundoff,
+                        euler_difference=float(np.max(np.abs(free.q - mj_euler["q"]))),
                         difference=float(diff.max()), difference_per_joint=diff.tolist(), armature_effect=arm,
                         mujoco_vs_less=float(np.max(np.abs(mj["q"] - less["q"]))), bound=arm + roundoff,
                         clipped=bool(mj["clipped"] or mj_free["clipped"]), mujoco_seconds=mj["seconds"],

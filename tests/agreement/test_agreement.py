@@ -254,7 +254,7 @@ def test_stored_results_are_complete_and_consistent():
         assert max(v for k, v in e.items() if k != "inertia_difference") < ag["export_tolerance"], tool
     assert set(ag["mujoco_runs"]) == {"pd_gravity", "free_fall", "computed_torque"}
     for key, e in ag["mujoco_runs"].items():
-        assert e["rotor_free"] <= e["roundoff_bound"] and e["difference"] <= e["bound"], key
+        assert e["rotor_free"] <= e["roundoff_bound"] < e["euler_difference"] and e["difference"] <= e["bound"], key
         assert not e["clipped"], key
     assert res["versions"]["mujoco"]
     for key in ("clik", "closed_loop"):
