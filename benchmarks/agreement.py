@@ -547,6 +547,19 @@ def mujoco_closed_loop(controller, ours, rotors: bool = True, integrator: str | 
     return out
 
 
+def rk4_step(accel, q, qd, tau, h):
+    """One classical RK4 step of ``h`` for ``qdd = accel(q, qd, tau)`` with ``tau`` held, as the engine steps
+    (chapter 5): ``(q, qd, qdd)`` after the step, ``qdd`` the first stage's acceleration (at the start)."""
+    a1 = accel(q, qd, tau)
+    v2 = qd + 0.5 * h * a1
+    a2 = accel(q + 0.5 * h * qd, v2, tau)
+    v3 = qd + 0.5 * h * a2
+    a3 = accel(q + 0.5 * h * v2, v3, tau)
+    v4 = qd + h * a3
+    a4 = accel(q + h * v3, v4, tau)
+    return q + h / 6.0 * (qd + 2.0 * v2 + 2.0 * v3 + v4), qd + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4), a1
+
+
 def coupling_free_closed_loop(controller, ours) -> dict:
     """The loop of :func:`mujoco_closed_loop` integrated in Python with ``scara``'s own model *less* the rotor
     coupling: ``qdd = (B - Delta_B)^-1 (tau - C qd - F qd - g)`` (:func:`scara.export.rotor_coupling`), one classical
@@ -565,15 +578,7 @@ def coupling_free_closed_loop(controller, ours) -> dict:
         return np.linalg.solve(B - D, tau - n)
 
     def step(q, qd, tau):
-        h = ours.dt
-        a1 = accel(q, qd, tau)
-        v2 = qd + 0.5 * h * a1
-        a2 = accel(q + 0.5 * h * qd, v2, tau)
-        v3 = qd + 0.5 * h * a2
-        a3 = accel(q + 0.5 * h * v2, v3, tau)
-        v4 = qd + h * a3
-        a4 = accel(q + h * v3, v4, tau)
-        return q + h / 6.0 * (qd + 2.0 * v2 + 2.0 * v3 + v4), qd + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        return rk4_step(accel, q, qd, tau, ours.dt)[:2]
 
     return _law_loop(controller, ours, step, ours.q[0], ours.qd[0])
 

@@ -311,18 +311,10 @@ def closed_loop(lib_plant, lib_ctrl, ref, q0, qd0, dt, KP, KD, steps):
                 break
             q, qd, QDD[k] = step(q, qd, tau, h)
             continue
-        a1 = fd(q, qd, tau)
-        QDD[k] = a1
         if k == steps - 1:
+            QDD[k] = fd(q, qd, tau)
             break
-        v2 = qd + 0.5 * h * a1
-        a2 = fd(q + 0.5 * h * qd, v2, tau)
-        v3 = qd + 0.5 * h * a2
-        a3 = fd(q + 0.5 * h * v2, v3, tau)
-        v4 = qd + h * a3
-        a4 = fd(q + h * v3, v4, tau)
-        q = q + h / 6.0 * (qd + 2.0 * v2 + 2.0 * v3 + v4)
-        qd = qd + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        q, qd, QDD[k] = A.rk4_step(fd, q, qd, tau, h)
     return Q
 
 
