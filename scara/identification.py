@@ -356,6 +356,7 @@ def optimise_excitation(harmonics: int = 5, period: float = 10.0, seed: int = 0,
     :class:`~scara.ScaraError` when the start is infeasible or the search ends outside the constraints.
     """
     from scipy.optimize import minimize  # noqa: PLC0415
+    from threadpoolctl import threadpool_limits  # noqa: PLC0415
 
     harmonics = check_count(harmonics, "harmonics", 2, 20, "harmonics per joint")
     grid = check_count(grid, "grid", 4 * harmonics, 5000, "samples of the design grid",
@@ -382,8 +383,11 @@ def optimise_excitation(harmonics: int = 5, period: float = 10.0, seed: int = 0,
 
     if margins(x0).min() < 0:
         raise ScaraError("the start of the search breaks the excitation's constraints: choose another offset")
-    res = minimize(objective, x0, method="SLSQP", constraints=[{"type": "ineq", "fun": margins}],
-                   options={"maxiter": maxiter, "ftol": 1e-6})
+    # SLSQP's path follows the last bits of each SVD, and a multi-threaded BLAS sums in an order that depends on its
+    # thread count: one thread makes the design the same on every run of a machine (and, on two cores, faster)
+    with threadpool_limits(limits=1, user_api="blas"):
+        res = minimize(objective, x0, method="SLSQP", constraints=[{"type": "ineq", "fun": margins}],
+                       options={"maxiter": maxiter, "ftol": 1e-6})
     worst = float(margins(res.x).min())
     if worst < -1e-6:
         raise ScaraError(f"the optimised excitation breaks its constraints on the design grid by {-worst:.3g} "

@@ -360,3 +360,22 @@ def test_bad_inputs_raise_clear_errors(excitation, grid_motion):
     with pytest.raises(ScaraError, match="sigma"):
         read_sensors(simulate(PDGravityController(), plant=ScaraParams(), joint_reference=excitation.reference(1)[:50]),
                      seed=0, sigma=[1.0, 0.0, 1.0, 1.0])
+
+
+def test_the_design_does_not_depend_on_the_blas_thread_count():
+    """SLSQP follows the last bits of every SVD, and a multi-threaded BLAS sums in an order set by its thread
+    count: the search runs on one BLAS thread, so the caller's setting cannot change the design (it did: the
+    condition number came out 29.0870767 on one thread and 29.0870814 on two before)."""
+    import scipy.optimize  # noqa: F401 - loads scipy's own BLAS, so that the limits below reach it too
+    from threadpoolctl import threadpool_limits
+
+    from scara.identification import optimise_excitation
+
+    designs = []
+    for threads in (1, 2):
+        with threadpool_limits(limits=threads, user_api="blas"):
+            designs.append(optimise_excitation())  # the book's design: 32 iterations, where the paths parted
+    a, b = designs
+    assert a.cond == b.cond and a.iterations == b.iterations
+    t = np.linspace(0.0, 10.0, 50)
+    assert np.array_equal(a.excitation.motion(t)[0], b.excitation.motion(t)[0])
