@@ -19,6 +19,7 @@ IMPLEMENTATION_COLOURS = {
     "numpy": "#999999",
     "pinocchio": "#E69F00",
     "toolbox": "#D55E00",
+    "mujoco": "#009E73",
 }
 #: (key in results["per_call"], label, slider label)
 PER_CALL_TASKS = (
@@ -47,8 +48,9 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
     """Bar chart of the stored timings, one slider step per task (five per-call costs, two 70 s runs).
 
     Each bar is a median time (log scale) and carries the ratio to our public function or our whole run;
-    extrapolated library runs are marked. Slider labels: FK, J, B, ID, FD (one call each), CLIK and loop
-    (the 70 s runs). ``results`` is the dict of ``benchmarks/results.json``.
+    extrapolated library runs are marked; an implementation has a bar where ``results`` holds it (MuJoCo: the
+    closed loop only). Slider labels: FK, J, B, ID, FD (one call each), CLIK and loop (the 70 s runs).
+    ``results`` is the dict of ``benchmarks/results.json``.
     """
     fig = go.Figure()
     tasks = []
@@ -61,7 +63,7 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
         tasks.append((label + ", one call", short, names, secs, text, hover, "time per call (s, log)"))
     for key, label, short in RUN_TASKS:
         e = results[key]
-        names = [n for n in ("ours", "numpy", "pinocchio", "toolbox") if n in e]
+        names = [n for n in ("ours", "numpy", "pinocchio", "toolbox", "mujoco") if n in e]
         secs = [e[n]["seconds"] for n in names]
         text = []
         for n, s in zip(names, secs):
