@@ -14,7 +14,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import sys
 
 import numpy as np
 import pytest
@@ -23,29 +22,20 @@ import scara
 from scara import ScaraParams
 from scara import dynamics as dyn
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BENCH = os.path.join(ROOT, "benchmarks")
+from _bench import BENCH, bench_module
+
 TOL = 1e-10
-EXTRAS = "needs the optional extras: pip install -r requirements-bench.txt (roboticstoolbox-python, pin)"
 
 
 @pytest.fixture(scope="module")
 def A():
     """The benchmarks' agreement module, after checking that both libraries import."""
-    pytest.importorskip("roboticstoolbox", reason=EXTRAS)
-    pytest.importorskip("pinocchio", reason=EXTRAS)
-    if BENCH not in sys.path:
-        sys.path.insert(0, BENCH)
-    import agreement
-
-    return agreement
+    return bench_module("agreement", "roboticstoolbox", "pinocchio")
 
 
 @pytest.fixture(scope="module")
 def L(A):
-    import libraries
-
-    return libraries
+    return bench_module("libraries")
 
 
 PAYLOADS = [0.0, 5.0]

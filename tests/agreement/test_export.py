@@ -20,8 +20,6 @@ Tolerances:
 from __future__ import annotations
 
 import math
-import os
-import sys
 
 import numpy as np
 import pytest
@@ -29,28 +27,20 @@ import pytest
 from scara import ScaraParams
 from scara.export import rotor_coupling
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BENCH = os.path.join(ROOT, "benchmarks")
-EXTRAS = "needs the optional extras: pip install -r requirements-bench.txt (pin, mujoco)"
+from _bench import bench_module
+
 REL = 1e-12
 
 
 @pytest.fixture(scope="module")
 def A():
-    pytest.importorskip("pinocchio", reason=EXTRAS)
-    pytest.importorskip("mujoco", reason=EXTRAS)
-    if BENCH not in sys.path:
-        sys.path.insert(0, BENCH)
-    import agreement
-
-    return agreement
+    """The benchmarks' agreement module, after checking that Pinocchio and MuJoCo import."""
+    return bench_module("agreement", "pinocchio", "mujoco")
 
 
 @pytest.fixture(scope="module")
 def L(A):
-    import libraries
-
-    return libraries
+    return bench_module("libraries")
 
 
 @pytest.mark.parametrize("m_L", [0.0, 5.0, 10.0])
