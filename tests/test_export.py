@@ -2,7 +2,7 @@
 DH frames (a small URDF reader written here from the URDF specification gives ``fkine``), state what they lose,
 and the command writes both files and refuses bad values with a message.
 
-The libraries' own reading of the files (Pinocchio, MuJoCo) is tests/agreement/test_export.py (optional extras).
+The libraries' own reading of the files (Pinocchio, MuJoCo) is tests/agreement/test_exported_files.py (optional extras).
 """
 from __future__ import annotations
 

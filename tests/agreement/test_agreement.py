@@ -1,5 +1,6 @@
 """Agreement of scara with Peter Corke's Robotics Toolbox for Python and Pinocchio (the verification appendix,
-section The same robot in two other libraries); the exported files and MuJoCo are tests/agreement/test_export.py.
+section The same robot in two other libraries); the exported files and MuJoCo are
+tests/agreement/test_exported_files.py.
 
 The comparisons need the optional extras (``pip install -r requirements-bench.txt``); without them those
 tests are skipped with the reason, so the main CI stays lean. The check of the stored
