@@ -73,30 +73,34 @@ class _Pin:
         self.ee = self.model.getFrameId("ee")
         self.F = np.asarray(p.F)
 
+    def _cfg(self, q):
+        """Pinocchio's configuration vector of ``q`` (the same four numbers for the model built in code)."""
+        return q
+
     def fkine(self, q):
         pin = self.pin
-        pin.forwardKinematics(self.model, self.data, q)
+        pin.forwardKinematics(self.model, self.data, self._cfg(q))
         return pin.updateFramePlacement(self.model, self.data, self.ee).homogeneous
 
     def jacob0(self, q):
         pin = self.pin
-        return pin.computeFrameJacobian(self.model, self.data, q, self.ee, pin.LOCAL_WORLD_ALIGNED)
+        return pin.computeFrameJacobian(self.model, self.data, self._cfg(q), self.ee, pin.LOCAL_WORLD_ALIGNED)
 
     def inertia(self, q):
-        M = self.pin.crba(self.model, self.data, q)  # upper triangle filled
+        M = self.pin.crba(self.model, self.data, self._cfg(q))  # upper triangle filled
         return np.triu(M) + np.triu(M, 1).T
 
     def coriolis(self, q, qd):
-        return self.pin.computeCoriolisMatrix(self.model, self.data, q, qd).copy()
+        return self.pin.computeCoriolisMatrix(self.model, self.data, self._cfg(q), qd).copy()
 
     def gravload(self, q):
-        return self.pin.computeGeneralizedGravity(self.model, self.data, q).copy()
+        return self.pin.computeGeneralizedGravity(self.model, self.data, self._cfg(q)).copy()
 
     def rne(self, q, qd, qdd):
-        return self.pin.rnea(self.model, self.data, q, qd, qdd) + self.F * qd
+        return self.pin.rnea(self.model, self.data, self._cfg(q), qd, qdd) + self.F * qd
 
     def accel(self, q, qd, tau):
-        return self.pin.aba(self.model, self.data, q, qd, tau - self.F * qd).copy()
+        return self.pin.aba(self.model, self.data, self._cfg(q), qd, tau - self.F * qd).copy()
 
 
 class _Toolbox:
@@ -128,13 +132,13 @@ class _Toolbox:
 
 
 def library(name: str, p: ScaraParams | None = None, rotors: bool = True):
-    """A wrapper with ``fkine, jacob0, inertia, coriolis, gravload, rne, accel`` for ``name``."""
+    """A wrapper with ``fkine, jacob0, inertia, coriolis, gravload, rne, accel`` for ``name``: one of
+    :data:`LIBRARIES`, or of :data:`EXPORT_TOOLS` (the exported files as Pinocchio and MuJoCo load them; MuJoCo has
+    no ``jacob0``)."""
     p = ScaraParams() if p is None else p
-    if name == "toolbox":
-        return _Toolbox(p, rotors)
-    if name == "pinocchio":
-        return _Pin(p, rotors)
-    raise ValueError(f"unknown library {name!r}; known: {LIBRARIES}")
+    if name not in _TOOLS:
+        raise ValueError(f"unknown library {name!r}; known: {LIBRARIES + EXPORT_TOOLS}")
+    return _TOOLS[name](p, rotors)
 
 
 def _maxabs(a) -> float:
@@ -341,9 +345,6 @@ def _print(res: dict) -> None:
               f"RK4, rotor-free {e['euler_difference']:.1e}")
 
 
-if __name__ == "__main__":
-    _print(all_agreement())
-
 
 # ------------------------------------------------------------------------------------------------------
 # 4. the exported files: Pinocchio reads the URDF, MuJoCo the MJCF
@@ -422,7 +423,7 @@ class _MuJoCo:
 
 
 class _PinUrdf(_Pin):
-    """:class:`_Pin` on the model Pinocchio builds from the exported URDF (unbounded joints: ``cos, sin``)."""
+    """:class:`_Pin` on the model Pinocchio builds from the exported URDF (its unbounded joints take ``cos, sin``)."""
 
     def __init__(self, p, rotors):
         import pinocchio as pin
@@ -431,21 +432,13 @@ class _PinUrdf(_Pin):
         self.model, self.data = L.pinocchio_from_urdf(p, rotors)
         self.ee = self.model.getFrameId("link4")
         self.F = self.model.damping.copy()  # the file's joint damping
-        self._q = lambda q: L.pinocchio_configuration(self.model, q)
-        for name in ("fkine", "jacob0", "inertia", "gravload"):
-            setattr(self, name, (lambda f: lambda q: f(self._q(q)))(getattr(super(), name)))
-        for name in ("coriolis", "rne", "accel"):
-            setattr(self, name, (lambda f: lambda q, *a: f(self._q(q), *a))(getattr(super(), name)))
+
+    def _cfg(self, q):
+        return L.pinocchio_configuration(self.model, q)
 
 
-def export_tool(name: str, p: ScaraParams | None = None, rotors: bool = True):
-    """The exported arm ``p`` loaded by ``name`` (:data:`EXPORT_TOOLS`), with the calls of :func:`library`."""
-    p = ScaraParams() if p is None else p
-    if name == "pinocchio_urdf":
-        return _PinUrdf(p, rotors)
-    if name == "mujoco_mjcf":
-        return _MuJoCo(p, rotors)
-    raise ValueError(f"unknown tool {name!r}; known: {EXPORT_TOOLS}")
+#: Every tool :func:`library` builds: the two libraries, then the exported files as the tools load them.
+_TOOLS = {"toolbox": _Toolbox, "pinocchio": _Pin, "pinocchio_urdf": _PinUrdf, "mujoco_mjcf": _MuJoCo}
 
 
 def _rel(a, b) -> float:
@@ -467,7 +460,7 @@ def export_agreement(n: int = 200, seed: int = 17, p: ScaraParams | None = None)
     q, qd, qdd = random_states(n, seed, p)
     out = {}
     for name in EXPORT_TOOLS:
-        off, on = export_tool(name, bare, rotors=False), export_tool(name, p, rotors=True)
+        off, on = library(name, bare, rotors=False), library(name, p, rotors=True)
         e = dict(fkine=0.0, inertia=0.0, coriolis=0.0, gravity=0.0, inverse_dynamics=0.0, forward_dynamics=0.0,
                  inertia_minus_coupling=0.0, coriolis_rotors=0.0, gravity_rotors=0.0, inertia_difference=0.0)
         for qk, qdk, qddk in zip(q, qd, qdd):
@@ -491,7 +484,7 @@ def export_agreement(n: int = 200, seed: int = 17, p: ScaraParams | None = None)
 # ------------------------------------------------------------------------------------------------------
 # 5. MuJoCo as a fourth peer of the engine: the same closed loops on the exported MJCF
 # ------------------------------------------------------------------------------------------------------
-def _law_loop(controller, ours, step, q0, qd0) -> dict:
+def _law_loop(controller, ours, step) -> dict:
     """Drive ``step(q, qd, tau) -> (q, qd)`` (one sampling period with ``tau`` held) with ``controller``'s compiled
     law as :func:`scara.simulate` does in ``ours``: the same reference rows, start state and sampling. Returns
     ``q``, ``qd``, ``tau`` (N, 4) and ``seconds`` (CPU time of the loop)."""
@@ -506,7 +499,7 @@ def _law_loop(controller, ours, step, q0, qd0) -> dict:
     law = controller.law
     Q, QD, TAU = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 4))
     tau = np.zeros(4)
-    q, qd = np.array(q0, dtype=float), np.array(qd0, dtype=float)
+    q, qd = ours.q[0].copy(), ours.qd[0].copy()
     t0 = time.process_time()
     for k in range(n):
         code = law(k, k * dt, dt, q, qd, ref[k], gains, model_array, state, work, sig[k], tau)
@@ -542,7 +535,7 @@ def mujoco_closed_loop(controller, ours, rotors: bool = True, integrator: str | 
         mujoco.mj_step(model, data)
         return data.qpos.copy(), data.qvel.copy()
 
-    out = _law_loop(controller, ours, step, ours.q[0], ours.qd[0])
+    out = _law_loop(controller, ours, step)
     out["clipped"] = clipped[0]
     return out
 
@@ -580,7 +573,7 @@ def coupling_free_closed_loop(controller, ours) -> dict:
     def step(q, qd, tau):
         return rk4_step(accel, q, qd, tau, ours.dt)[:2]
 
-    return _law_loop(controller, ours, step, ours.q[0], ours.qd[0])
+    return _law_loop(controller, ours, step)
 
 
 #: Unit round-off of double precision, 2^-53.
@@ -628,8 +621,6 @@ def mujoco_agreement(traj=None, keys=None) -> dict:
       comparison does without);
     * ``mujoco_seconds``, ``ours_seconds`` (CPU time of the two loops of the rotors-on run).
     """
-    from scara import ScaraParams
-
     plant = ScaraParams().with_payload(5.0)
     bare = plant.replace(I_m=NO_ROTORS)
     out = {}
@@ -654,3 +645,7 @@ def mujoco_agreement(traj=None, keys=None) -> dict:
                         clipped=bool(mj["clipped"] or mj_free["clipped"]), mujoco_seconds=mj["seconds"],
                         ours_seconds=float(ours.elapsed))
     return out
+
+
+if __name__ == "__main__":
+    _print(all_agreement())

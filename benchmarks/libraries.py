@@ -242,6 +242,12 @@ class NumpyRobot:
 # ------------------------------------------------------------------------------------------------------
 # the exported files (scara.export), loaded by the tools they are for
 # ------------------------------------------------------------------------------------------------------
+def _exported(p, rotors: bool) -> ScaraParams:
+    """The arm an export writes: ``p`` (default the book's), with ``I_m = 0`` when ``rotors`` is False."""
+    p = _params(p)
+    return p if rotors else p.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+
+
 def urdf_armature(urdf: str) -> np.ndarray:
     """The reflected rotor inertia a URDF written by ``scara.export.to_urdf`` states in its transmissions,
     ``gear_ratio^2 rotor_inertia`` per joint (Drake's reading of them), read back from the text."""
@@ -266,9 +272,7 @@ def pinocchio_from_urdf(p: ScaraParams | None = None, rotors: bool = True):
 
     from scara.export import to_urdf
 
-    p = _params(p)
-    if not rotors:
-        p = p.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    p = _exported(p, rotors)
     text = to_urdf(p)
     model = pin.buildModelFromXML(text)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -p.g0]), np.zeros(3))
@@ -291,8 +295,6 @@ def mujoco_model(p: ScaraParams | None = None, rotors: bool = True):
 
     from scara.export import to_mjcf
 
-    p = _params(p)
-    if not rotors:
-        p = p.replace(I_m=(0.0, 0.0, 0.0, 0.0))
+    p = _exported(p, rotors)
     model = mujoco.MjModel.from_xml_string(to_mjcf(p))
     return model, mujoco.MjData(model)

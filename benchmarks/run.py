@@ -298,23 +298,21 @@ def closed_loop(lib_plant, lib_ctrl, ref, q0, qd0, dt, KP, KD, steps):
     q = np.array(q0, dtype=float)
     qd = np.array(qd0, dtype=float)
     h = dt
-    step = getattr(lib_plant, "step", None)
-    fd = None if step is not None else lib_plant.accel
+    step = getattr(lib_plant, "step", None)  # a library that steps its own RK4 (MuJoCo's mj_step)
+    if step is None:  # else RK4 in Python on the library's forward dynamics
+
+        def step(q, qd, tau, h, fd=lib_plant.accel):
+            return A.rk4_step(fd, q, qd, tau, h)
+
     for k in range(steps):
         Q[k] = q
         QD[k] = qd
         r = ref[k]
         tau = KP * (r[0:4] - q) + KD * (r[4:8] - qd) + lib_ctrl.gravity(q)
         TAU[k] = tau
-        if step is not None:  # the library steps its own RK4 (MuJoCo's mj_step)
-            if k == steps - 1:
-                break
-            q, qd, QDD[k] = step(q, qd, tau, h)
-            continue
         if k == steps - 1:
-            QDD[k] = fd(q, qd, tau)
             break
-        q, qd, QDD[k] = A.rk4_step(fd, q, qd, tau, h)
+        q, qd, QDD[k] = step(q, qd, tau, h)
     return Q
 
 

@@ -46,7 +46,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from .errors import ScaraError, check_positive
+from .errors import ScaraError
 from .params import ScaraParams
 
 __all__ = ["to_urdf", "to_mjcf", "rotor_coupling", "link_inertials", "QUILL_SPEED", "MJCF_FLOOR", "main"]
@@ -61,7 +61,9 @@ _LINK_DEPTH = 0.06
 _COLUMN_RADIUS = 0.07
 _QUILL_RADIUS = 0.02
 _FLANGE = (0.04, 0.02)
-#: The colours of the book's drawing (the arm's grey, a lighter column).
+#: The colours of the book's drawing: the arm's grey ``scara.plots`` PALETTE["arm"], #4D4D4D, in the 0-1 RGBA the
+#: formats take (written out here: the model's modules never import plotly; a test holds the two together), and a
+#: lighter column.
 _ARM_RGBA = (0.302, 0.302, 0.302, 1.0)
 _BASE_RGBA = (0.6, 0.6, 0.6, 1.0)
 
@@ -146,15 +148,11 @@ _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,63}")
 
 
 def _check(p, name: str) -> ScaraParams:
+    """The arm (a :class:`~scara.ScaraParams` holds only valid arms) and a name fit for the files and the XML."""
     if not isinstance(name, str) or not _NAME.fullmatch(name):
         raise ScaraError(f"the model's name must be a letter followed by up to 63 letters, digits, '_' or '-' (it also "
                          f"names the files), got {name!r}")
-    p = ScaraParams.resolve(p)
-    for name in ("a1", "a2", "d0"):
-        check_positive(getattr(p, name), f"p.{name}")
-    if not p.d3_max > p.d3_min:
-        raise ScaraError(f"the quill's stroke must be positive: d3_min = {p.d3_min} m, d3_max = {p.d3_max} m")
-    return p
+    return ScaraParams.resolve(p)
 
 
 def _xml(root: ET.Element, header: str) -> str:

@@ -215,3 +215,11 @@ def test_command_refuses_bad_values_without_a_traceback(tmp_path, args, words):
     assert r.returncode == 2
     assert words in r.stderr and "Traceback" not in r.stderr
     assert not list(tmp_path.iterdir())
+
+
+def test_the_files_colour_the_arm_as_the_books_figures_do():
+    from scara.plots._common import PALETTE
+
+    grey = PALETTE["arm"].lstrip("#")
+    rgb = [int(grey[i:i + 2], 16) / 255 for i in (0, 2, 4)]
+    assert np.allclose(ex._ARM_RGBA[:3], rgb, atol=5e-4) and ex._ARM_RGBA[3] == 1.0

@@ -34,11 +34,6 @@ def A():
     return bench_module("agreement", "roboticstoolbox", "pinocchio")
 
 
-@pytest.fixture(scope="module")
-def L(A):
-    return bench_module("libraries")
-
-
 PAYLOADS = [0.0, 5.0]
 
 

@@ -38,11 +38,6 @@ def A():
     return bench_module("agreement", "pinocchio", "mujoco")
 
 
-@pytest.fixture(scope="module")
-def L(A):
-    return bench_module("libraries")
-
-
 @pytest.mark.parametrize("m_L", [0.0, 5.0, 10.0])
 def test_files_hold_the_books_model(A, m_L):
     """Item 2: fkine, B, C, g (and tau, qdd with the friction the files state) equal scara's to 1e-12 relative with
