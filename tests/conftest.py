@@ -6,6 +6,7 @@ settings).
 - The chapter 3 reference trajectory and the chapter 6 runs (the comparison table's four and the
   independent-joint controller's), computed once per session (session-scoped fixtures)
   and shared by test_trajectory_*.py and test_control_*.py.
+- ``L`` for tests/agreement (the benchmarks' ``libraries`` module).
 - At the end of the run, the largest difference met by each independent check (``_largest.record``).
 
 Helper modules (``_largest``, ``_trajectory_shared``, ``_control_shared`` here; ``_figure_rules``,
@@ -84,6 +85,19 @@ def independent_runs(traj, jref):
              "saturated": IndependentJointController(tau_max=tight),
              "windup": IndependentJointController(tau_max=tight, anti_windup=False)}
     return {name: (c, simulate(c, traj, P5, joint_reference=jref)) for name, c in ctrls.items()}
+
+
+# --------------------------------------------------------------------------------------------------
+# tests/agreement: the benchmarks' libraries module (one conftest only: a second conftest.py in a tree without
+# packages clashes with this one when the doctests collect it)
+# --------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def L(A):
+    """The benchmarks' ``libraries`` module, after the requesting module's own ``A`` fixture has checked that the
+    extras it needs import (``_bench`` sits in tests/agreement, on ``sys.path`` once a module there is imported)."""
+    from _bench import bench_module
+
+    return bench_module("libraries")
 
 
 # --------------------------------------------------------------------------------------------------
