@@ -44,12 +44,17 @@ def _fmt(seconds: float) -> str:
     return f"{seconds:.3g} s"
 
 
+def _ratio(r: float) -> str:
+    """A ratio to ours: three significant digits, whole numbers from 100 up (1701, not 1.7e+03)."""
+    return f"{r:.0f}" if r >= 100 else f"{r:.3g}"
+
+
 def speed_figure(results: dict, height: int = 460) -> go.Figure:
     """Bar chart of the stored timings, one slider step per task (five per-call costs, two 70 s runs).
 
     Each bar is a median time (log scale) and carries the ratio to our public function or our whole run;
-    extrapolated library runs are marked; an implementation has a bar where ``results`` holds it (MuJoCo: the
-    closed loop only). Slider labels: FK, J, B, ID, FD (one call each), CLIK and loop (the 70 s runs).
+    extrapolated library runs are marked ≈ (and say so on hover); an implementation has a bar where ``results``
+    holds it (MuJoCo: the closed loop only). Slider labels: FK, J, B, ID, FD (one call each), CLIK and loop (the 70 s runs).
     ``results`` is the dict of ``benchmarks/results.json``.
     """
     fig = go.Figure()
@@ -66,19 +71,16 @@ def speed_figure(results: dict, height: int = 460) -> go.Figure:
         names = [n for n in ("ours", "numpy", "pinocchio", "toolbox", "mujoco") if n in e]
         secs = [e[n]["seconds"] for n in names]
         text = []
-        for n, s in zip(names, secs):
-            t = f"{_fmt(s)}<br>{e[n]['ratio_to_ours']:.3g}× ours"
-            if e[n].get("extrapolated"):
-                t += "<br>(extrapolated)"
-            text.append(t)
-        hover = [f"{n}: {e[n]['call']}" for n in names]
+        for n, s in zip(names, secs):   # ≈: extrapolated (a third line would shrink the label at 390 px)
+            text.append(f"{'≈' if e[n].get('extrapolated') else ''}{_fmt(s)}<br>{_ratio(e[n]['ratio_to_ours'])}× ours")
+        hover = [f"{n}: {e[n]['call']}" + (" (extrapolated)" if e[n].get("extrapolated") else "") for n in names]
         tasks.append((label, short, names, secs, text, hover, "time for the run (s, log)"))
 
     for i, (label, _, names, secs, text, hover, _) in enumerate(tasks):
         fig.add_trace(go.Bar(
             x=names, y=secs, text=text, textposition="outside", hovertext=hover, hoverinfo="text",
             marker_color=[IMPLEMENTATION_COLOURS[n] for n in names], name=label, visible=(i == 0),
-            showlegend=False, cliponaxis=False,
+            showlegend=False, cliponaxis=False, constraintext="none",   # full-size labels at 390 px too
         ))
     def yrange(secs):
         return [float(np.log10(min(secs))) - 0.6, float(np.log10(max(secs))) + 0.9]
