@@ -20,3 +20,19 @@ def bench_module(name: str, *extras: str):
     if BENCH not in sys.path:
         sys.path.insert(0, BENCH)
     return importlib.import_module(name)
+
+
+def rotor_free_pd_gravity_run(no_rotors):
+    """The reference run of the closed-loop comparisons, rotors off (``I_m = no_rotors``): PD + gravity
+    compensation on the nominal model, the plant carrying 5 kg, ``scara.simulate``'s run of the 70 s reference.
+    Returns ``(traj, plant, model, ctrl, ref, ours)``, ``ref`` the joint reference (N, 12) and ``ours`` the run."""
+    from scara import ScaraParams
+    from scara._simulate import PDGravityController, ikine_reference, simulate
+    from scara.trajectory import reference_trajectory
+
+    traj = reference_trajectory()
+    plant = ScaraParams().with_payload(5.0).replace(I_m=no_rotors)
+    model = ScaraParams().replace(I_m=no_rotors)
+    ctrl = PDGravityController(model=model)
+    ref = ikine_reference(traj, plant)
+    return traj, plant, model, ctrl, ref, simulate(ctrl, traj, plant, joint_reference=ref)

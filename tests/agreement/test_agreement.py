@@ -23,7 +23,7 @@ import scara
 from scara import ScaraParams
 from scara import dynamics as dyn
 
-from _bench import BENCH, bench_module
+from _bench import BENCH, bench_module, rotor_free_pd_gravity_run
 
 TOL = 1e-10
 
@@ -198,15 +198,7 @@ def test_clik_loops_reproduce_scara_clik(run):
 
 
 def test_closed_loops_reproduce_scara_simulate(run, A):
-    from scara._simulate import PDGravityController, ikine_reference, simulate
-    from scara.trajectory import reference_trajectory
-
-    traj = reference_trajectory()
-    plant = ScaraParams().with_payload(5.0).replace(I_m=A.NO_ROTORS)
-    model = ScaraParams().replace(I_m=A.NO_ROTORS)
-    ctrl = PDGravityController(model=model)
-    ref = ikine_reference(traj, plant)
-    ours = simulate(ctrl, traj, plant, joint_reference=ref)
+    traj, plant, model, ctrl, ref, ours = rotor_free_pd_gravity_run(A.NO_ROTORS)
     steps = 300
     for cls in (run.NumpyCalls, run.PinocchioCalls, run.ToolboxCalls):
         q = run.closed_loop(cls(plant, rotors=False), cls(model, rotors=False), ref, ref[0, :4], ref[0, 4:8],

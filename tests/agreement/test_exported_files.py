@@ -27,7 +27,7 @@ import pytest
 from scara import ScaraParams
 from scara.export import rotor_coupling
 
-from _bench import bench_module
+from _bench import bench_module, rotor_free_pd_gravity_run
 
 REL = 1e-12
 
@@ -160,15 +160,7 @@ def test_closed_loop_timing_loop_on_mujoco_reproduces_simulate(A):
     """The timed MuJoCo loop of benchmarks/run.py does the same work: PD + gravity, rotors off, same motion."""
     import run
 
-    from scara._simulate import PDGravityController, ikine_reference, simulate
-    from scara.trajectory import reference_trajectory
-
-    traj = reference_trajectory()
-    plant = ScaraParams().with_payload(5.0).replace(I_m=A.NO_ROTORS)
-    model = ScaraParams().replace(I_m=A.NO_ROTORS)
-    ctrl = PDGravityController(model=model)
-    ref = ikine_reference(traj, plant)
-    ours = simulate(ctrl, traj, plant, joint_reference=ref)
+    traj, plant, model, ctrl, ref, ours = rotor_free_pd_gravity_run(A.NO_ROTORS)
     steps = 2000
     q = run.closed_loop(run.MuJoCoCalls(plant, rotors=False), run.MuJoCoCalls(model, rotors=False), ref, ref[0, :4],
                         ref[0, 4:8], traj.dt, ctrl.K_P, ctrl.K_D, steps)
