@@ -18,6 +18,9 @@ as the built page, in forms it renders:
 * a labelled display equation carries its book number as ``\\tag{3.6}`` after a ``(label)=`` target, and the first
   cell's front matter turns the extension's own equation numbering off and numbers exercises as the book does
   (``3.1``, ``3.2``, ...);
+* a link to a file the build writes for download (``<a ... href="../_downloads/scara.urdf" download>``) becomes
+  a markdown link to the file of that name beside the chapter, where the take-home copy puts it
+  (``take_home.py``): JupyterLab opens it in a tab, from which the learner can save it;
 * a hidden check cell (tag ``remove-cell``) is collapsed and runs under ``%%book_check``
   (:func:`scara.book.book_check`): a check of the book's own numbers that no longer holds after a learner's edit
   prints one line instead of stopping the chapter; cells whose code the book hides are collapsed too.
@@ -42,6 +45,8 @@ FIGURE = re.compile(r"^(?P<fence>`{3,}|:{3,})\{glue:figure\}[ \t]+(?P<key>\S+)[ 
 EQUATION = re.compile(r"^\$\$[ \t]*\n(?P<math>.*?)\n\$\$[ \t]*\((?P<label>[^)\s]+)\)[ \t]*$", re.M | re.S)
 #: a markdown link to a label of the book: [text](label) (no scheme, no file, no anchor sign)
 LABEL_LINK = re.compile(r"\]\((?P<url>[A-Za-z][\w\-]*)\)")
+#: a raw HTML link to a file the build writes for download (``../_downloads/NAME`` from a chapter's page)
+DOWNLOAD = re.compile(r'<a class="reference download" href="\.\./_downloads/(?P<name>[^"/]+)" download>(?P<text>[^<]*)</a>')
 #: "text <target>" in a role's content
 EXPLICIT = re.compile(r"^(?P<text>.*?)\s*<(?P<target>[^<>]+)>$", re.S)
 
@@ -209,6 +214,7 @@ def lab_notebook(nb: dict, res: Resolver, glued: dict) -> dict:
             found: list = []
             src = ROLE.sub(lambda m: _role(m, res, glued, found), src)
             src = LABEL_LINK.sub(lambda m: _label_link(m, res), src)
+            src = DOWNLOAD.sub(lambda m: _link(m.group("text"), m.group("name")), src)
             results = _expression_results(found, glued)
             if results:
                 meta["user_expressions"] = results

@@ -10,7 +10,9 @@ The zip holds one folder, ``scara-course/``: the chapters (``book/*.ipynb`` as J
 captions, references as links with the book's text, outputs cleared; ``book/*.md``), the package (``scara/``
 without ``__pycache__``), ``pyproject.toml``, ``requirements.txt`` (whose ``-e .`` installs the package from the
 unpacked folder), ``references.bib``, the benchmarks' stored results (``benchmarks/results.json``, which the
-verification appendix reads) and a README (``take_home/README.md``) whose one command installs everything
+verification appendix reads), the arm's model files the appendix links to (``book/scara.urdf`` and
+``book/scara.xml``, written by ``model_files`` from ``scara.export``, so the appendix's links work in JupyterLab too)
+and a README (``take_home/README.md``) whose one command installs everything
 and opens the chapters in JupyterLab. The book's configuration stays out: the book is built from the sources.
 """
 from __future__ import annotations
@@ -19,6 +21,8 @@ import io
 import json
 import zipfile
 from pathlib import Path
+
+from model_files import model_files  # beside this file, on the book's extension path
 
 ZIP_NAME = "scara-course.zip"
 ZIP_DIR = "_downloads"
@@ -66,6 +70,9 @@ def _members(root: Path, notebooks: dict[str, bytes | None] | None = None) -> di
         elif p.suffix == ".ipynb":
             data = _clear_outputs(data)
         out[rel.as_posix()] = data
+    # the model files beside the chapters, where the JupyterLab copy's links find them (lab_copy.DOWNLOAD)
+    for name, text in model_files().items():
+        out[f"book/{name}"] = text.encode("utf-8")
     for name, data in (notebooks or {}).items():  # a page the copy writes as a notebook (the introduction)
         if data is not None and name not in out:
             out[name] = data

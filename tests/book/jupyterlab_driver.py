@@ -106,7 +106,7 @@ def jupyterlab_server(notebooks=None, timeout: float = 90.0):
     if notebooks is None:
         with zipfile.ZipFile(TAKE_HOME) as zf:
             for name in zf.namelist():
-                if Path(name).parent.name == "book" and Path(name).suffix in (".ipynb", ".md"):
+                if Path(name).parent.name == "book" and not name.endswith("/"):  # the chapters and their files
                     (root / Path(name).name).write_bytes(zf.read(name))
     for nb in notebooks or ():
         shutil.copy(nb, root / Path(nb).name)

@@ -95,6 +95,13 @@ def test_the_copy_reads_as_the_book():
     assert all(c["metadata"]["jupyter"]["source_hidden"] for c in code)
 
 
+def test_a_download_link_becomes_a_link_to_the_file_beside_the_chapter():
+    text = ('Files: <a class="reference download" href="../_downloads/scara.urdf" download>scara.urdf</a> and\n'
+            '<a class="reference download" href="../_downloads/scara.xml" download>the MJCF</a>.')
+    out = lab_copy.lab_notebook(_nb(("markdown", text, {})), _resolver(), {})
+    assert out["cells"][0]["source"].endswith("Files: [scara.urdf](scara.urdf) and\n[the MJCF](scara.xml).")
+
+
 @pytest.mark.parametrize("text, what", [("{numref}`fig-missing`", "fig-missing"), ("{eq}`eq-missing`", "eq-missing"),
                                         ("{cite}`nobody2020`", "nobody2020"), ("{doc}`nowhere`", "book/nowhere")])
 def test_an_unknown_label_stops_the_build_with_its_name(text, what):

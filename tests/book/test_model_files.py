@@ -10,6 +10,7 @@ it fails.
 from __future__ import annotations
 
 import html.parser
+import json
 import os
 import sys
 import xml.etree.ElementTree as ET
@@ -96,3 +97,27 @@ def test_appendix_links_to_both_files(built):
         assert "download" in attrs, f"the link to {href} does not download the file"
         linked[target.name] = href
     assert set(linked) == set(EXPECTED), f"the appendix links to {sorted(linked)}, not to {sorted(EXPECTED)}"
+
+
+def test_take_home_copy_holds_the_files_its_appendix_links(built):
+    """In the take-home zip, the appendix's links lead to the same files, beside the chapter, so JupyterLab opens
+    them (a markdown link there; JupyterLab serves no file outside the folder it was started in, ``book/``)."""
+    import posixpath
+    import re
+    import zipfile
+
+    with zipfile.ZipFile(DOWNLOADS / "scara-course.zip") as zf:
+        top = zf.namelist()[0].split("/", 1)[0]
+        nb = json.loads(zf.read(f"{top}/book/appendix_verification.ipynb"))
+        text = "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+        assert "_downloads/" not in text, "the take-home appendix still links into the book's _downloads folder"
+        linked = set()
+        for href in re.findall(r"\]\(([^)\s]+)\)", text):
+            if posixpath.basename(href) not in EXPECTED:
+                continue
+            member = posixpath.normpath(posixpath.join(top, "book", href))
+            assert member in zf.namelist(), f"the take-home appendix links to {href}, which the zip does not hold"
+            export, _ = EXPECTED[posixpath.basename(member)]
+            assert zf.read(member).decode("utf-8") == export(), f"the take-home copy's {member} is not scara.export's"
+            linked.add(posixpath.basename(member))
+    assert linked == set(EXPECTED), f"the take-home appendix links to {sorted(linked)}, not to {sorted(EXPECTED)}"
