@@ -740,10 +740,23 @@ def _safe_field(name: str) -> str:
     return name
 
 
+#: what :func:`_infer` found, by (function, argument types): a kernel called by many is typed once per process
+_INFERRED: dict = {}
+
+
 def _infer(fn, args):
     """numba's type inference of the function ``fn`` for the argument types ``args`` (no code is generated):
     ``(variable types by name, {callee's Python function: its argument types})``, or ``(None, {})`` when
-    numba is missing or cannot type it (the kernel is then translated with run-time dispatch)."""
+    numba is missing or cannot type it (the kernel is then translated with run-time dispatch). Each pair is
+    inferred once per process (the same function and types give the same types); callers get their own dicts."""
+    key = (fn, tuple(args))
+    if key not in _INFERRED:
+        _INFERRED[key] = _infer_types(fn, key[1])
+    types, callees = _INFERRED[key]
+    return (None if types is None else dict(types)), dict(callees)
+
+
+def _infer_types(fn, args):
     try:
         from numba.core import compiler, typed_passes  # noqa: PLC0415
         from numba.core import types as nt  # noqa: PLC0415
