@@ -17,16 +17,24 @@ from scara import (PDGravityController, ScaraError, ScaraParams, ShapeError, Unr
                    dynamic_parameters, inverse_dynamics, reference_trajectory, regressor, simulate)
 from scara.errors import NonFiniteError
 from scara.identification import (
-    DRAWN_FIELDS, ENCODER_COUNTS, PAYLOAD_RANGE, QUILL_RESOLUTION, SPEED_LIMITS, FourierExcitation, base_parameters,
-    draw_arm, encoder_resolution, excitation_margins, filtered_data, identify, least_squares, lowpass, measure,
-    optimise_excitation, predicted_torques, quantise, read_sensors, regressor_condition, stacked_regressor,
-    torque_noise_std,
+    BOOK_DESIGN, DRAWN_FIELDS, ENCODER_COUNTS, PAYLOAD_RANGE, QUILL_RESOLUTION, SPEED_LIMITS, FourierExcitation,
+    base_parameters, book_design, draw_arm, encoder_resolution, excitation_margins, filtered_data, identify,
+    least_squares, lowpass, measure, optimise_excitation, predicted_torques, quantise, read_sensors,
+    regressor_condition, stacked_regressor, torque_noise_std,
 )
 
 
 @pytest.fixture(scope="module")
-def design():
+def search():
+    """A search with the defaults, on this machine."""
     return optimise_excitation()
+
+
+@pytest.fixture(scope="module")
+def design():
+    """The book's design (the one such a search found, kept as data): the statistics below do not follow the last
+    digits a CPU's BLAS gives the search."""
+    return book_design()
 
 
 @pytest.fixture(scope="module")
@@ -268,7 +276,18 @@ def test_fourier_series_starts_and_ends_at_rest_and_differentiates(h, seed):
     assert np.allclose(FourierExcitation.at_rest(e.free(), period=8.0).a, e.a)
 
 
-def test_optimisation_lowers_the_condition_number(design, grid_motion):
+def test_the_search_reaches_the_books_design(search, design):
+    """On any CPU the search ends at the kept design's optimum to about 1e-6 in its condition number (the two CPUs
+    the book was built on gave 29.0870767 and 29.0870997), from the same start, within the same constraints."""
+    assert search.success and design.success and search.cond_start == design.cond_start
+    assert math.isclose(search.cond, design.cond, rel_tol=1e-5), (search.cond, design.cond)
+    assert abs(search.iterations - design.iterations) <= 5
+    assert np.array_equal(design.excitation.free(), np.array(BOOK_DESIGN))
+
+
+@pytest.mark.parametrize("which", ["search", "design"])
+def test_optimisation_lowers_the_condition_number(which, request):
+    design = request.getfixturevalue(which)
     assert design.cond < design.cond_start / 5, (design.cond, design.cond_start)
     t = np.arange(200) * (design.excitation.period / 200)
     assert math.isclose(regressor_condition(*design.excitation.motion(t)), design.cond, rel_tol=1e-9)
@@ -374,7 +393,7 @@ def test_the_design_does_not_depend_on_the_blas_thread_count():
     designs = []
     for threads in (1, 2):
         with threadpool_limits(limits=threads, user_api="blas"):
-            designs.append(optimise_excitation())  # the book's design: 32 iterations, where the paths parted
+            designs.append(optimise_excitation())  # the book's search: 32 or 33 iterations, where the paths parted
     a, b = designs
     assert a.cond == b.cond and a.iterations == b.iterations
     t = np.linspace(0.0, 10.0, 50)

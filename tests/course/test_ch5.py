@@ -109,10 +109,10 @@ def test_record_length_gives_the_interval(params):
     """Identifying from the predicted number of whole periods gives a half-width of m3 no wider than asked, up to
     the scatter of the noise level's estimate (relative standard error about 1 / sqrt(2 N), N >= 380 samples:
     within 4 of those)."""
-    from scara.identification import EXAMPLE_SEED, draw_arm, identify, measure, optimise_excitation
+    from scara.identification import EXAMPLE_SEED, book_design, draw_arm, identify, measure
     r = solve("ex-dyn-record", params)
     assert math.isclose(r["duration_s"], 40.0 * (r["h40_g"] / params["target_g"]) ** 2, rel_tol=1e-12)
-    exc = optimise_excitation().excitation
+    exc = book_design().excitation
     est, _ = identify(measure(draw_arm(EXAMPLE_SEED), exc.reference(int(r["periods"])), seed=1))
     half_g = 1e3 * 0.5 * (est.interval[0, 1] - est.interval[0, 0])
     assert half_g <= params["target_g"] * (1 + 4 / math.sqrt(2 * 380))

@@ -8,8 +8,8 @@ from scara import (PDGravityController, ScaraParams, TorqueController, clik2, fr
                    inverse_dynamics, joint_setpoint, payload_from_pi, reference_trajectory, regressor, simulate)
 from scara.course.answers import solves
 from scara.errors import ScaraError
-from scara.identification import (CUTOFF, EXAMPLE_SEED, draw_arm, encoder_resolution, identify, measure,
-                                  optimise_excitation)
+from scara.identification import (CUTOFF, EXAMPLE_SEED, book_design, draw_arm, encoder_resolution, identify,
+                                  measure)
 
 #: the payloads the course's arm is given (the live panel's and fig-ch5-inertia-elbow's slider: 0 to 20 kg)
 PAYLOAD_MAX = 20.0
@@ -163,8 +163,8 @@ def dyn_encoder(bits: float) -> dict:
 
 @lru_cache(maxsize=1)
 def _excitation():
-    """The exciting trajectory of the chapter (the defaults of ``optimise_excitation``)."""
-    return optimise_excitation().excitation
+    """The exciting trajectory of the chapter (``book_design``: the one ``optimise_excitation`` found)."""
+    return book_design().excitation
 
 
 @lru_cache(maxsize=32)
