@@ -150,6 +150,69 @@ def test_student_source_holds_no_solution_and_no_answers(tmp_path):
             assert "solution" not in cell.get("metadata", {}).get("tags", [])
 
 
+def _executed_cache(folder, change=None):
+    """An execution cache as the book's build leaves it (jupyter-cache): each chapter run, each code cell given an
+    output; ``change`` (a file name) is cached with its last code cell's source changed (an older version)."""
+    from jupyter_cache import get_cache
+    from jupyter_cache.base import CacheBundleIn
+
+    cache = get_cache(str(folder))
+    for page in BOOK.glob("*.ipynb"):
+        nb = nbformat.read(page, as_version=4)
+        code = [c for c in nb.cells if c.cell_type == "code"]
+        for k, cell in enumerate(code):
+            cell.outputs = [nbformat.v4.new_output("stream", name="stdout", text=f"ran {page.stem} {k}\n")]
+        if page.name == change:
+            code[-1].source = "an older version"
+        cache.cache_notebook_bundle(CacheBundleIn(nb, str(page)), check_validity=False, overwrite=True)
+    return folder
+
+
+def test_student_source_keeps_the_outputs_of_the_books_build(tmp_path):
+    """The chapters keep the build's outputs (a solution's cell leaves with its own), and the edition's configuration
+    executes none of them, only the Markdown pages."""
+    executed = edition.executed_notebooks(cache=_executed_cache(tmp_path / "cache"))
+    assert sorted(executed) == sorted(p.name for p in BOOK.glob("*.ipynb") if p.stem not in edition.INSTRUCTOR_PAGES)
+    out = edition.write_student_source(tmp_path / "student", executed=executed)
+    for name, nb in executed.items():
+        source = json.loads((BOOK / name).read_text(encoding="utf-8"))
+        assert [(c["cell_type"], c["source"]) for c in nbformat.reads(json.dumps(nb), 4).cells] == [
+            (c["cell_type"], "".join(c["source"])) for c in source["cells"]]     # the source's own cells
+        kept = json.loads((out / "book" / name).read_text(encoding="utf-8"))
+        assert kept["cells"] == edition.student_notebook(nb)["cells"]
+        ran = ["".join(o["text"]) for c in kept["cells"] if c["cell_type"] == "code" for o in c["outputs"]]
+        assert ran and all(t.startswith(f"ran {Path(name).stem} ") for t in ran)
+    config = (out / "_config.yml").read_text()
+    assert 'exclude_patterns: ["book/*.ipynb"]' in config.split("\nexecute:", 1)[1].split("\n\n", 1)[0]
+    assert (ROOT / "_config.yml").read_text().count("exclude_patterns: []") == 1   # the book executes every chapter
+    # without outputs given, the edition's build executes the chapters as the book's does
+    plain = edition.write_student_source(tmp_path / "plain")
+    assert (plain / "_config.yml").read_text() == (ROOT / "_config.yml").read_text()
+
+
+def test_student_source_refuses_outputs_of_another_version(tmp_path):
+    with pytest.raises(ScaraError, match="left no execution cache"):
+        edition.executed_notebooks(cache=tmp_path / "none")
+    cache = _executed_cache(tmp_path / "cache", change="03_trajectory.ipynb")
+    with pytest.raises(ScaraError, match="holds no run of book/03_trajectory.ipynb as it stands"):
+        edition.executed_notebooks(cache=cache)
+
+
+def test_a_cell_that_reads_a_solutions_name_stops_the_reuse_of_outputs():
+    def cell(source, solution=False):
+        return {"cell_type": "code", "source": source, "outputs": [],
+                "metadata": {"tags": ["remove-cell", "solution"] if solution else []}}
+
+    nb = {"cells": [cell("import numpy as np\np = 1"), cell("ex = p + 1\nf = lambda d: d", solution=True),
+                    cell("%%book_check\nprint(np.pi, p, [k for k in range(3)])"), cell("def g(ex):\n    return ex"),
+                    cell("y = ex * 2")]}
+    assert edition.solution_dependencies(nb) == {4: {"ex"}}
+    nb["cells"][3]["source"] = "ex = 0"   # defined outside the solutions too: the student's cells have it
+    assert edition.solution_dependencies(nb) == {}
+    for page in BOOK.glob("*.ipynb"):     # the book's chapters: none
+        assert edition.solution_dependencies(json.loads(page.read_text(encoding="utf-8"))) == {}, page.name
+
+
 # ---- assignments ----------------------------------------------------------------------------------------------
 def _roster(path, n):
     with open(path, "w", newline="") as fh:
@@ -409,3 +472,36 @@ def test_the_grade_command_reads_its_inputs(tmp_path):
 
 def test_book_folder_is_the_books():
     assert book_folder() == BOOK
+
+
+def test_the_runner_caps_a_flood_of_output_and_still_reads_the_answers(tmp_path):
+    """A notebook that prints three times :data:`OUTPUT_CAP` characters to each stream, then points ``sys.stdout``
+    elsewhere, still has its answers read; the kernel sends at most the cap of each stream (the cells' outputs, as
+    the runner holds them, are counted by a spy on nbclient's output hook)."""
+    import nbclient
+
+    from scara.course import _runner
+
+    nb = nbformat.v4.new_notebook()
+    flood = f"import sys\nfor _ in range({3 * _runner.OUTPUT_CAP // 100}):\n    print('x' * 99)\n    " \
+            f"print('y' * 99, file=sys.stderr)\n"
+    nb.cells = [nbformat.v4.new_code_cell(flood), nbformat.v4.new_code_cell("import io\nsys.stdout = io.StringIO()"),
+                nbformat.v4.new_code_cell("answer = 2.5")]
+    path = tmp_path / "flood.ipynb"
+    nbformat.write(nb, path)
+    sent = {"stdout": 0, "stderr": 0}
+    hook = nbclient.NotebookClient.output
+
+    def spy(self, outs, msg, display_id, cell_index):
+        if msg["msg_type"] == "stream":
+            sent[msg["content"]["name"]] += len(msg["content"]["text"])
+        return hook(self, outs, msg, display_id, cell_index)
+
+    nbclient.NotebookClient.output = spy
+    try:
+        out = _runner.run(str(path), str(tmp_path / "result.json"), 60.0, ["answer"])
+    finally:
+        nbclient.NotebookClient.output = hook
+    assert out["status"] == "ok" and out["answers"] == {"answer": 2.5} and out["error"] is None
+    assert 0 < sent["stderr"] <= _runner.OUTPUT_CAP
+    assert 0 < sent["stdout"] <= _runner.OUTPUT_CAP + 200          # the cap, and the collecting cell's line
