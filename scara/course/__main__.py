@@ -27,6 +27,8 @@ def _parser() -> argparse.ArgumentParser:
     e.add_argument("--source", type=Path, default=Path("_build/student-source"), help="where its sources go")
     e.add_argument("--output", type=Path, default=Path("_build/student"), help="where it is built (OUTPUT/_build/html)")
     e.add_argument("--no-build", action="store_true", help="write the sources only")
+    e.add_argument("--execute", action="store_true", help="execute the chapters again (default: keep the outputs of "
+                                                           "the book's build, from its cache _build/.jupyter_cache)")
 
     a = sub.add_parser("assign", help="write each student's assignment and the key")
     a.add_argument("--roster", type=Path, required=True, help="CSV with a column 'id' (and optionally 'name')")
@@ -51,9 +53,9 @@ def main(argv=None) -> int:
     args = _parser().parse_args(argv)
     try:
         if args.command == "edition":
-            from scara.course.edition import build_student, write_student_source  # noqa: PLC0415
+            from scara.course.edition import build_student, executed_notebooks, write_student_source  # noqa: PLC0415
 
-            write_student_source(args.source)
+            write_student_source(args.source, executed=None if args.execute else executed_notebooks())
             print(f"student edition's sources: {args.source}")
             if args.no_build:
                 return 0

@@ -14,8 +14,15 @@ The student edition is written from the same sources by :func:`write_student_sou
 * the marking notes of the exercises' declarations are replaced by a line saying where they are;
 * the teacher's page (:data:`INSTRUCTOR_PAGES`) is left out, and out of the table of contents.
 
+The chapters keep the outputs of the book's own build (its execution cache, ``_build/.jupyter_cache``), so the
+student edition is not executed a second time: each executed chapter passes :func:`student_notebook` as its
+source does (a solution's cell leaves with its outputs), and the student edition's configuration runs none of them.
+:func:`executed_notebooks` takes a chapter's outputs only from a run of its code as it stands (an older build is
+refused, never shown) and only when no cell the student edition keeps reads a name that only a solution's cell
+defines (then the kept cells give the same outputs without the solutions). The Markdown pages run as before.
+
 ``python -m scara.course edition student`` writes the sources to ``_build/student-source`` and builds them into
-``_build/student/html``.
+``_build/student/_build/html`` (``--execute`` runs the chapters again instead).
 """
 from __future__ import annotations
 
@@ -29,7 +36,7 @@ from pathlib import Path
 from scara.errors import ScaraError
 
 __all__ = ["INSTRUCTOR_PAGES", "SOLUTION_TAG", "SOLUTION_BLOCK", "strip_solutions", "student_notebook", "write_student_source",
-           "build_student", "ROOT"]
+           "build_student", "executed_notebooks", "solution_dependencies", "CACHE", "ROOT"]
 
 #: the pages of the instructor edition only
 INSTRUCTOR_PAGES = ("teaching",)
@@ -39,6 +46,8 @@ SOLUTION_TAG = "solution"
 SOLUTION_BLOCK = re.compile(r"^(?P<fence>`{3,}|:{3,})\{solution\}[^\n]*\n.*?^(?P=fence)[ \t]*\n?", re.M | re.S)
 #: the repository: the book's sources sit beside the package
 ROOT = Path(__file__).resolve().parents[2]
+#: where the book's build keeps what it executed (Jupyter Book's jupyter-cache), relative to the repository
+CACHE = Path("_build") / ".jupyter_cache"
 #: what the student edition's source holds besides the notebooks (copied as they are)
 COPIED = ("_config.yml", "_toc.yml", "references.bib", "pyproject.toml", "requirements.txt", "take_home",
           "benchmarks/results.json", "_ext")
@@ -103,9 +112,77 @@ def without_notes(source: str) -> str:
         ast.Module(body=tree.body[1:] if ast.get_docstring(tree) else tree.body, type_ignores=[])) + "\n"
 
 
-def write_student_source(out: Path, root: Path = ROOT) -> Path:
+def _names(code: str) -> tuple[set, set]:
+    """``(bound, read)``: the names a cell's code binds and the names it reads (its IPython magic lines aside)."""
+    import ast  # noqa: PLC0415
+
+    tree = ast.parse("\n".join("" if line.lstrip().startswith(("%", "!")) else line for line in code.splitlines()))
+    bound, read, local = set(), set(), set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.arg):  # a function's or a lambda's own argument
+            local.add(node.arg)
+        elif isinstance(node, ast.Name):
+            (read if isinstance(node.ctx, ast.Load) else bound).add(node.id)
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            bound.add(node.name)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            bound.update((a.asname or a.name).split(".")[0] for a in node.names)
+    return bound, read - local
+
+
+def solution_dependencies(nb: dict) -> dict[int, set]:
+    """The code cells of a chapter that would read what only its solution cells (tagged :data:`SOLUTION_TAG`)
+    define: cell index -> those names. Empty when the student edition's cells are independent of the solutions,
+    so that their outputs are the same with the solutions' cells as without (the edition keeps those outputs)."""
+    code = [(k, SOLUTION_TAG in c.get("metadata", {}).get("tags", []), _names(
+        "".join(c["source"]) if isinstance(c["source"], list) else c["source"]))
+        for k, c in enumerate(nb["cells"]) if c["cell_type"] == "code"]
+    solution_only = set().union(*(b for _, sol, (b, _) in code if sol)) - set().union(
+        *(b for _, sol, (b, _) in code if not sol))
+    return {k: read & solution_only for k, sol, (_, read) in code if not sol and read & solution_only}
+
+
+def executed_notebooks(root: Path = ROOT, cache: Path | None = None) -> dict[str, dict]:
+    """The chapters as the book's build executed them, from its execution cache (jupyter-cache, :data:`CACHE`):
+    file name -> the source notebook (a dict) with the outputs the build stored for it, glued values included,
+    one for every ``book/*.ipynb`` of the student edition. Raises :class:`~scara.ScaraError` naming the chapter
+    when the cache holds none for its code as it stands (no build, or a build older than the sources), so that no
+    output of another version of a chapter reaches the edition."""
+    import nbformat  # noqa: PLC0415 - the book's toolchain, as the edition's build needs it
+    from jupyter_cache import get_cache  # noqa: PLC0415
+
+    folder = Path(cache) if cache is not None else root / CACHE
+    if not (folder / "global.db").is_file():
+        raise ScaraError(f"the book's build left no execution cache ({folder} is missing): build the book first "
+                         f"(jupyter-book build .), or give --execute to run the chapters again")
+    store = get_cache(str(folder))
+    out = {}
+    for page in sorted((root / "book").glob("*.ipynb")):
+        if page.stem in INSTRUCTOR_PAGES:
+            continue
+        try:
+            _, nb = store.merge_match_into_notebook(nbformat.read(page, as_version=4))
+        except KeyError:
+            raise ScaraError(f"the book's execution cache ({folder}) holds no run of book/{page.name} as it stands "
+                             f"(a build older than its code): build the book again, or give --execute to run the "
+                             f"chapters again") from None
+        nb = json.loads(nbformat.writes(nb))
+        needs = solution_dependencies(nb)
+        if needs:
+            k, names = next(iter(needs.items()))
+            raise ScaraError(f"{page.name}: cell {k + 1} reads {', '.join(sorted(names))}, which only a solution's cell "
+                             f"defines: the student edition (no solution cells) cannot keep the book's outputs")
+        out[page.name] = nb
+    return out
+
+
+def write_student_source(out: Path, root: Path = ROOT, executed: dict[str, dict] | None = None) -> Path:
     """Write the student edition's sources to ``out`` (emptied first): the book's pages, stripped of their
-    solutions, its configuration and extensions, and the package without its answers. Returns ``out``."""
+    solutions, its configuration and extensions, and the package without its answers. Returns ``out``.
+
+    ``executed`` (file name -> executed notebook, :func:`executed_notebooks`) gives the chapters with the outputs
+    of the book's build: they are written with those outputs and the edition's configuration does not execute
+    them. Without it every chapter is executed by the edition's build."""
     out = Path(out)
     if out.resolve() == root.resolve() or root.resolve() in out.resolve().parents and out.name in ("book", "scara"):
         raise ScaraError(f"refusing to write the student edition over the sources: {out}")
@@ -119,7 +196,7 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
         if page.stem in INSTRUCTOR_PAGES:
             continue
         if page.suffix == ".ipynb":
-            nb = json.loads(page.read_text(encoding="utf-8"))
+            nb = executed[page.name] if executed else json.loads(page.read_text(encoding="utf-8"))
             (out / "book" / page.name).write_text(json.dumps(student_notebook(nb), indent=1, ensure_ascii=False) + "\n",
                                                   encoding="utf-8")
         elif page.suffix == ".md":
@@ -140,8 +217,29 @@ def write_student_source(out: Path, root: Path = ROOT) -> Path:
     for page in INSTRUCTOR_PAGES:
         toc = re.sub(rf"^[ \t]*- file: book/{page}[ \t]*\n", "", toc, flags=re.M)
     (out / "_toc.yml").write_text(toc, encoding="utf-8")
+    if executed:
+        _keep_outputs(out / "_config.yml")
     (out / "EDITION").write_text("student\n", encoding="utf-8")
     return out
+
+
+#: the ``execute:`` section of the book's ``_config.yml`` (the section's name and its indented lines)
+EXECUTE_SECTION = re.compile(r"^execute:[ \t]*\n(?:[ \t]+.*\n|[ \t]*\n)*", re.M)
+#: the line of that section listing the notebooks the build does not execute (none, in the book)
+NOT_EXECUTED = re.compile(r"^(?P<indent>[ \t]+)exclude_patterns: \[\].*$", re.M)
+
+
+def _keep_outputs(config: Path) -> None:
+    """Make the edition's configuration execute none of its ``book/*.ipynb`` (they hold the book's outputs)."""
+    text = config.read_text(encoding="utf-8")
+    section = EXECUTE_SECTION.search(text)
+    found = NOT_EXECUTED.search(section.group(0)) if section else None
+    if found is None:
+        raise ScaraError(f"{config}: its 'execute:' section has no line 'exclude_patterns: []' to list the chapters "
+                         f"that keep the book's outputs")
+    start, end = section.start() + found.start(), section.start() + found.end()
+    line = f"{found.group('indent')}exclude_patterns: [\"book/*.ipynb\"]   # they keep the outputs of the book's build"
+    config.write_text(text[:start] + line + text[end:], encoding="utf-8")
 
 
 def build_student(source: Path, output: Path, extra_args=()) -> int:
