@@ -13,12 +13,25 @@ Helper modules (``_largest``, ``_trajectory_shared``, ``_control_shared`` here; 
 ``jupyterlab_driver`` in tests/book) are imported by their plain names: the test folders have no ``__init__.py``,
 so pytest (import mode ``prepend``) puts each test file's folder on ``sys.path`` before importing it.
 """
+import json
 import os
+from pathlib import Path
 
-import pytest
-from hypothesis import HealthCheck, settings
+# Two workers share two cores: a BLAS of two threads in each would run four threads on two cores, and OpenBLAS's
+# threads spin while they wait for work, so a loaded worker slows the other to a crawl. One thread each (and in
+# every kernel and process the tests start, which inherit the setting).
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-import _largest
+import numpy  # noqa: E402, F401 - loaded here, so that the limit below reaches its BLAS
+import pytest  # noqa: E402
+import scipy.linalg  # noqa: E402, F401 - and scipy's own
+from hypothesis import HealthCheck, settings  # noqa: E402
+from threadpoolctl import threadpool_limits  # noqa: E402
+
+import _largest  # noqa: E402
+
+threadpool_limits(limits=1, user_api="blas")
 
 settings.register_profile(
     "scara",
@@ -110,3 +123,45 @@ def pytest_terminal_summary(terminalreporter):
     for module in sorted(_largest.LARGEST):
         for name, err in _largest.LARGEST[module].items():
             terminalreporter.write_line(f"{module}: {name}: {err:.2e}")
+
+
+# --------------------------------------------------------------------------------------------------
+# how the two workers share the tests out (--dist loadgroup, in collection order)
+# --------------------------------------------------------------------------------------------------
+#: test files whose tests the workers share out one by one: each test is long beside its module's fixtures (a
+#: server, a browser), so two workers may as well run them side by side. Every other file runs whole on one worker
+#: (its tests share costly fixtures, or, for a notebook under nbval, its cells run in order in one kernel).
+SPREAD = ("tests/book/test_browser.py", "tests/book/test_jupyterlab.py", "tests/book/test_page_panels.py",
+          "tests/book/test_lab_copy.py", "tests/book/test_frames_browser.py", "tests/book/test_jupyterlab_reading.py",
+          "tests/test_identification.py")
+#: the seconds each test took in a recent run (``.ci/test_groups.py --durations``): the longest units go first, so
+#: that no worker is left alone with a long one at the end. A test it does not know counts as a short one; a stale
+#: number changes only the order, never what runs.
+DURATIONS = Path(__file__).with_name("durations.json")
+#: what a test the durations do not know is taken to last (s)
+UNKNOWN = 0.05
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Each file one unit of work (marked as an ``xdist_group``), or each test for the files of :data:`SPREAD`; the
+    units sorted longest first (``--dist loadgroup --no-loadscope-reorder`` keeps this order)."""
+    seconds = json.loads(DURATIONS.read_text()) if DURATIONS.is_file() else {}
+    units: dict[str, list] = {}
+    for item in items:
+        path = item.nodeid.split("::", 1)[0]
+        unit = item.nodeid if path in SPREAD else path
+        units.setdefault(unit, []).append(item)
+    weight = {u: sum(seconds.get(i.nodeid, UNKNOWN) for i in its) for u, its in units.items()}
+    longest: dict[str, float] = {}
+    for u in units:
+        longest[u.split("::", 1)[0]] = max(longest.get(u.split("::", 1)[0], 0.0), weight[u])
+    # the files whose longest unit is longest first (the long units start early, the short ones fill the end); a
+    # spread file's tests together (a worker keeps its module's fixtures between them), longest first; the sort is
+    # stable: equal weights keep the collection's order
+    order = sorted(units, key=lambda u: (-longest[u.split("::", 1)[0]], u.split("::", 1)[0], -weight[u]))
+    items[:] = [i for u in order for i in units[u]]
+    for unit in order:
+        if unit.split("::", 1)[0] not in SPREAD:   # a test of a spread file is a unit of its own as it stands
+            for item in units[unit]:
+                item.add_marker(pytest.mark.xdist_group(unit.replace("@", "_")))
