@@ -85,7 +85,7 @@ FIGURES_READY = """() => Array.from(document.querySelectorAll('.plotly-graph-div
   gd => !!gd._fullLayout && gd.querySelectorAll('.main-svg').length > 0)"""
 
 
-def settle(pg, timeout: float = 30000) -> None:
+def settle(pg, timeout: float = 120000) -> None:
     """Wait until MathJax has typeset the page and every plotly figure is drawn (and redrawn at this width)."""
     pg.wait_for_function(MATH_READY, timeout=timeout)
     pg.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise.then(() => true) : true")

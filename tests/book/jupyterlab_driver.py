@@ -91,7 +91,7 @@ def stop_process_group(proc) -> None:
 
 
 @contextmanager
-def jupyterlab_server(notebooks=None, timeout: float = 90.0):
+def jupyterlab_server(notebooks=None, timeout: float = 180.0):
     """Start ``jupyter lab`` on a temporary copy of ``notebooks`` (default: every chapter and page of the book's
     folder in the take-home download, :data:`TAKE_HOME`); yield its base URL. The server, its kernels and its
     temporary folders are removed on exit."""
@@ -230,7 +230,7 @@ class Lab:
                 pass
 
     # -- notebooks ----------------------------------------------------------------------------------------
-    def open(self, name: str, timeout: float = 60.0):
+    def open(self, name: str, timeout: float = 180.0):
         self.page.goto(f"{self.url}/lab/tree/{name}?reset", wait_until="domcontentloaded")
         self.page.wait_for_selector(".jp-Notebook .jp-Cell", timeout=timeout * 1000)
         # JupyterLab may still ask which kernel to start if the kernel list came late: take the notebook's own
@@ -249,13 +249,13 @@ class Lab:
           return el ? (el.getAttribute('title') || el.getAttribute('aria-label') || el.className) : '';
         }""")
 
-    def wait_kernel_idle(self, timeout: float = 60.0):
+    def wait_kernel_idle(self, timeout: float = 180.0):
         """Wait until the notebook's kernel has started and is idle (the status bar reads
         "Python 3 (ipykernel) | Idle")."""
         self.page.wait_for_function("""() => Array.from(document.querySelectorAll('.jp-StatusBar-Widget span, .jp-StatusBar-TextItem'))
             .some(e => /\\(ipykernel\\)\\s*\\|\\s*Idle/.test(e.textContent))""", timeout=timeout * 1000, polling=100)
 
-    def run_all(self, timeout: float = 300.0) -> float:
+    def run_all(self, timeout: float = 900.0) -> float:
         """Run → Run All Cells; wait until the kernel is idle with no cell queued or running (a failing cell
         stops the run: :meth:`cell_errors` tells). Returns the seconds it took."""
         t0 = time.monotonic()
@@ -265,7 +265,7 @@ class Lab:
             self.page.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
             self.page.locator(".lm-Menu-itemLabel", has_text="Run All Cells").first.click()
             try:
-                self.page.wait_for_function(started, timeout=20000, polling=100)
+                self.page.wait_for_function(started, timeout=60000, polling=100)
                 break
             except Exception:  # noqa: BLE001 - try again
                 self.page.keyboard.press("Escape")
@@ -306,7 +306,7 @@ class Lab:
         """Open the Log Console for this notebook and return what it lists (level: all)."""
         self.page.locator(".lm-MenuBar-itemLabel", has_text="View").first.click()
         self.page.locator(".lm-Menu-itemLabel", has_text="Show Log Console").first.click()
-        self.page.wait_for_selector(".jp-LogConsole", timeout=10000)
+        self.page.wait_for_selector(".jp-LogConsole", timeout=60000)
         # show every level, debug included
         select = self.page.locator(".jp-LogConsole-toolbar select, .jp-LogConsolePanel select").first
         if select.count():
@@ -360,7 +360,7 @@ class Lab:
     def figures(self, panel) -> list[dict]:
         return panel.evaluate(FIGURES)
 
-    def wait_drawn(self, panel, timeout: float = 30.0) -> None:
+    def wait_drawn(self, panel, timeout: float = 120.0) -> None:
         """Wait until every figure of ``panel`` has been drawn with its data (a FigureWidget draws when its
         view is attached, which on a loaded machine may come after Run All has finished)."""
         panel.evaluate("""(panel, timeout) => new Promise((resolve, reject) => {
@@ -395,7 +395,7 @@ class Lab:
     def message(panel) -> str:
         return panel.evaluate("(p) => { const e = p.querySelector('.scara-panel-message'); return e ? e.innerText : ''; }")
 
-    def timing_since(self, mark, panel, before: dict, settle_ms: float = 350.0, timeout: float = 30.0) -> dict:
+    def timing_since(self, mark, panel, before: dict, settle_ms: float = 350.0, timeout: float = 120.0) -> dict:
         """Wait until the panel has taken the change made after ``mark`` (its update number moved past
         ``before``'s) and its figures have stopped redrawing for ``settle_ms``; return the time from the first
         key press or change after ``mark`` to the last redraw (ms, None if nothing was redrawn) and the

@@ -49,7 +49,7 @@ def wait_seq(pg, name, above):
     pg.wait_for_function("""([name, above]) => {
       const e = document.querySelector(`[data-scara-panel="${name}"] .scara-panel-values`);
       return e && e.textContent && JSON.parse(e.textContent).seq > above;
-    }""", arg=[name, above], timeout=30000)
+    }""", arg=[name, above], timeout=120000)
 
 
 def set_control(pg, name, control, value, spec_control):
@@ -78,7 +78,7 @@ def panel_spec(pg, name):
 
 
 
-def wait_values(pg, name, values: dict, stale: bool | None = False, timeout: float = 30000):
+def wait_values(pg, name, values: dict, stale: bool | None = False, timeout: float = 120000):
     """Wait until the panel shows ``values`` (as ``.scara-panel-values`` holds them) and is stale or not (None:
     either)."""
     pg.wait_for_function("""([name, values, stale]) => {

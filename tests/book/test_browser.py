@@ -114,7 +114,7 @@ def test_page_offline(page, server, browser):
     assert resp is not None and resp.ok, f"{page}: HTTP {resp.status if resp else 'no response'}"
 
     # MathJax: wait for the typesetting promise, then every math element must hold typeset output
-    pg.wait_for_function("() => !document.querySelector('.math') || (window.MathJax && MathJax.startup && MathJax.startup.promise)", timeout=30000)
+    pg.wait_for_function("() => !document.querySelector('.math') || (window.MathJax && MathJax.startup && MathJax.startup.promise)", timeout=120000)
     pg.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
     math = pg.evaluate(MATH_STATE)
     assert not math["untyped"], f"{page}: {len(math['untyped'])} math elements not typeset, e.g. {math['untyped'][:3]}"

@@ -329,7 +329,7 @@ def test_address_keeps_a_setting_and_reset_returns(server, browser):
                     [sel, math.log10(c["low"]), math.log10(c["high"])])
         pg.wait_for_function("""([name, v]) => { const e = document.querySelector(`[data-scara-panel="${name}"] .scara-panel-values`);
           return JSON.parse(e.textContent).values[%s] !== undefined && Math.abs(JSON.parse(e.textContent).values[%s] - v) < 1e-9 * Math.max(1, Math.abs(v)); }"""
-                             % (json.dumps(c["name"]), json.dumps(c["name"])), arg=[name, c["high"]], timeout=30000)
+                             % (json.dumps(c["name"]), json.dumps(c["name"])), arg=[name, c["high"]], timeout=120000)
         pg.wait_for_timeout(300)
         assert _seq(pg, name) - seq < 41, "every move was drawn: they did not collapse"
         assert not errors, errors
@@ -386,7 +386,7 @@ def test_a_waypoint_dragged_on_the_top_view_is_the_jupyter_editors_edit(server, 
             want[key] = float(f"{round((r[0] + frac * (r[1] - r[0])) / step) * step:.12g}")
         _wait_seq(pg, name, seq)
         pg.wait_for_function("""([name, i]) => { const e = document.querySelector(`[data-scara-panel="${name}"] .scara-panel-values`);
-          const v = JSON.parse(e.textContent).values; return v.point === i; }""", arg=[name, target["i"]], timeout=30000)
+          const v = JSON.parse(e.textContent).values; return v.point === i; }""", arg=[name, target["i"]], timeout=120000)
         pg.wait_for_timeout(800)  # the last pointer move's redraw
         st = _state(pg, name)
         got = st["values"]["values"]

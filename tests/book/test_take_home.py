@@ -253,7 +253,7 @@ def _plain_env(**extra) -> dict:
     return env
 
 
-def _start_lab(course: Path, start: str, tmp: Path, timeout: float = 90.0) -> str:
+def _start_lab(course: Path, start: str, tmp: Path, timeout: float = 180.0) -> str:
     """Run the README's start command in ``course`` (with a free port, no browser, no token added to its end)
     until JupyterLab answers; return the server's log. The server is stopped before returning."""
     port = _free_port()
