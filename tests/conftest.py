@@ -114,6 +114,100 @@ def L(A):
 
 
 # --------------------------------------------------------------------------------------------------
+# JupyterLab (tests/book/test_jupyterlab*.py): one server on the take-home copies of the chapters per worker
+# --------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def jupyterlab_url():
+    """The URL of one JupyterLab server per worker, shared by every JupyterLab test (each opens its own page and
+    shuts its kernels down); the requesting module has checked that JupyterLab and the build are there
+    (``jupyterlab_driver`` sits in tests/book, on ``sys.path`` once a module there is imported)."""
+    import jupyterlab_driver
+
+    with jupyterlab_driver.jupyterlab_server() as url:
+        yield url
+
+
+# --------------------------------------------------------------------------------------------------
+# the closing note: the largest difference met by each independent check
+# --------------------------------------------------------------------------------------------------
+def pytest_terminal_summary(terminalreporter):
+    if not _largest.LARGEST:
+        return
+    terminalreporter.section("largest difference of each independent check")
+    for module in sorted(_largest.LARGEST):
+        for name, err in _largest.LARGEST[module].items():
+            terminalreporter.write_line(f"{module}: {name}: {err:.2e}")
+
+
+# --------------------------------------------------------------------------------------------------
+# how the two workers share the tests out (pytest-xdist: units of work, in collection order)
+# --------------------------------------------------------------------------------------------------
+#: test files whose tests the workers share out one by one: each test is long beside its module's fixtures (a
+#: server, a browser), so two workers may as well run them side by side. Every other file is one unit, run whole on
+#: one worker (its tests share costly fixtures, or, for a notebook under nbval, its cells run in order in one kernel).
+SPREAD = ("tests/book/test_browser.py", "tests/book/test_jupyterlab.py", "tests/book/test_page_panels.py",
+          "tests/book/test_lab_copy.py", "tests/book/test_frames_browser.py", "tests/book/test_jupyterlab_reading.py",
+          "tests/test_identification.py")
+#: the seconds each test took in a recent run (``.ci/test_groups.py --durations``): the longest units go first, so
+#: that no worker is left alone with a long one at the end. A test it does not know counts as a short one; a stale
+#: number changes only the order, never what runs.
+DURATIONS = Path(__file__).with_name("durations.json")
+#: what a test the durations do not know is taken to last (s)
+UNKNOWN = 0.05
+
+
+def _unit(nodeid: str) -> str:
+    """The unit of work of a test: its file, or the test itself in a file of :data:`SPREAD`."""
+    path = nodeid.split("::", 1)[0]
+    return nodeid if path in SPREAD else path
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """The units of work (:func:`_unit`) sorted so that the files whose longest unit is longest come first (the
+    long units start early, the short ones fill the end); a spread file's tests stay together, longest first (a
+    worker keeps its module's fixtures between them). The sort is stable: equal weights keep the collection's
+    order, and so does every file's own order of tests."""
+    seconds = json.loads(DURATIONS.read_text()) if DURATIONS.is_file() else {}
+    units: dict[str, list] = {}
+    for item in items:
+        units.setdefault(_unit(item.nodeid), []).append(item)
+    weight = {u: sum(seconds.get(i.nodeid, UNKNOWN) for i in its) for u, its in units.items()}
+    longest: dict[str, float] = {}
+    for u in units:
+        longest[u.split("::", 1)[0]] = max(longest.get(u.split("::", 1)[0], 0.0), weight[u])
+    order = sorted(units, key=lambda u: (-longest[u.split("::", 1)[0]], u.split("::", 1)[0], -weight[u]))
+    items[:] = [i for u in order for i in units[u]]
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """pytest-xdist's scheduling by scope, with :func:`_unit` as the scope and the collection's order kept (the
+    order :func:`pytest_collection_modifyitems` made): each worker is sent whole units."""
+    from xdist.scheduler import LoadScopeScheduling
+
+    class Units(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _unit(nodeid)
+
+    config.option.loadscopereorder = False
+    return Units(config, log)
+
+
+# --------------------------------------------------------------------------------------------------
+# JupyterLab (tests/book/test_jupyterlab*.py): one server on the take-home copies of the chapters per worker
+# --------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def jupyterlab_url():
+    """The URL of one JupyterLab server per worker, shared by every JupyterLab test (each opens its own page and
+    shuts its kernels down); the requesting module has checked that JupyterLab and the build are there
+    (``jupyterlab_driver`` sits in tests/book, on ``sys.path`` once a module there is imported)."""
+    import jupyterlab_driver
+
+    with jupyterlab_driver.jupyterlab_server() as url:
+        yield url
+
+
+# --------------------------------------------------------------------------------------------------
 # the closing note: the largest difference met by each independent check
 # --------------------------------------------------------------------------------------------------
 def pytest_terminal_summary(terminalreporter):

@@ -54,11 +54,10 @@ def _require(module: str, found: bool, reason: str):
 
 
 @pytest.fixture(scope="module")
-def lab_url():
+def lab_url(request):
     _require("jupyterlab", lab_driver.jupyter_executable() is not None,
              "JupyterLab is not installed (pip install -r requirements.txt)")
-    with lab_driver.jupyterlab_server() as url:
-        yield url
+    return request.getfixturevalue("jupyterlab_url")   # the worker's one server (tests/conftest.py)
 
 
 @pytest.fixture(scope="module")

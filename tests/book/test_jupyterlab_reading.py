@@ -29,14 +29,15 @@ def _unavailable(reason: str):
 
 
 @pytest.fixture(scope="module")
-def lab():
+def lab(request):
     if lab_driver.jupyter_executable() is None:
         _unavailable("JupyterLab is not installed (pip install -r requirements.txt)")
     if not lab_driver.chromium_available():
         _unavailable(f"Chromium (at {lab_driver.CHROMIUM}) or playwright is missing (apt-get install chromium)")
     if not lab_driver.TAKE_HOME.is_file():
         _unavailable(f"the book is not built ({lab_driver.TAKE_HOME} missing): run jupyter-book build . first")
-    with lab_driver.jupyterlab_server() as url, lab_driver.chromium() as browser:
+    url = request.getfixturevalue("jupyterlab_url")     # the worker's one server (tests/conftest.py)
+    with lab_driver.chromium() as browser:
         yield browser, url
 
 
