@@ -489,9 +489,11 @@ def torque_noise_std(tau, fraction: float = NOISE_FRACTION) -> np.ndarray:
     >>> torque_noise_std([[1.0, -2.0, 30.0, 0.5], [-4.0, 1.0, 10.0, 0.1]]).tolist()
     [0.04, 0.02, 0.3, 0.005]
     """
-    tau = as_array(tau, "tau", (4,), allow_batch=True)
+    tau = as_array(tau, "tau", (4,), allow_batch=True).reshape(-1, 4)
+    if len(tau) == 0:
+        raise ShapeError("tau holds no sample: the noise is a share of each joint's peak torque over at least one")
     fraction = check_positive(fraction, "fraction")
-    return fraction * np.abs(tau.reshape(-1, 4)).max(axis=0)
+    return fraction * np.abs(tau).max(axis=0)
 
 
 def read_sensors(run, seed: int, noise: float = NOISE_FRACTION, resolution=None, sigma=None) -> Measurement:

@@ -48,7 +48,7 @@ from ..control._common import (
     BOUND_FIELDS, ERROR_BOUND, SINGULAR_JACOBIAN, BoundedController, positive_gains, torque_code,
 )
 from ..dynamics import DP_A1, DP_A2, DP_D0, gravity_kernel, inverse_dynamics_kernel
-from ..errors import ScaraError, as_array, check_number
+from ..errors import ScaraError, ShapeError, _numbers, as_array, check_number
 from ..kinematics import jacobian_dot_kernel, jacobian_kernel, pose_kernel
 from ..control.operational import jacobian_solve
 from ..params import ScaraParams
@@ -600,7 +600,7 @@ MAX_FORCE = 1e4
 
 def _force_vector(value) -> np.ndarray:
     """``f_d`` as a (3,) vector (a number is its z entry), finite and within :data:`MAX_FORCE` N."""
-    if np.ndim(value) == 0:
+    if np.ndim(_numbers(value, "f_d must be a number or a vector of 3 numbers (N)", ShapeError)) == 0:
         f = np.array([0.0, 0.0, check_number(value, "f_d", unit="N")])
     else:
         f = np.array(as_array(value, "f_d", (3,)), dtype=float)
