@@ -147,15 +147,31 @@ def _limits(memory_mb: int, cpu_seconds: int):
 
 def warm_cache(folder: Path, labels=()) -> Path | None:
     """A numba cache of the package's compiled kernels in ``folder`` (None without numba), so that each
-    submission starts from compiled code rather than compiling it again: each gets a copy of its own."""
+    submission starts from compiled code rather than compiling it again: each gets a copy of its own.
+
+    The kernels are compiled into the package's own cache (numba's ``CACHE_DIR`` in this process, kept per version
+    of the kernels' sources, which the book and the chapters fill too) when it can be written, so that a second
+    grading compiles nothing; ``folder`` is then a copy of it (numba checks each entry against its source, and
+    the submissions see the package at the same path). Elsewhere they are compiled into ``folder`` itself."""
     try:
-        import numba  # noqa: F401, PLC0415
+        import numba  # noqa: PLC0415
     except ImportError:
         return None
+    own = Path(numba.config.CACHE_DIR) if numba.config.CACHE_DIR else None
+    try:
+        if own is not None:
+            own.mkdir(parents=True, exist_ok=True)
+        shared = own is not None and os.access(own, os.W_OK)
+    except OSError:
+        shared = False
+    target = own if shared else folder
     folder.mkdir(parents=True, exist_ok=True)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(folder))
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(target))
     subprocess.run([sys.executable, "-m", "scara.course.warm", *labels], env=env, check=True,
                    stdout=subprocess.DEVNULL, timeout=1800)
+    if shared:
+        # numba writes each file as NAME.tmp.UID, then renames it: a half-written one is left out
+        shutil.copytree(own, folder, dirs_exist_ok=True, ignore=shutil.ignore_patterns("*.tmp.*"))
     return folder
 
 
