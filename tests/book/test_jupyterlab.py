@@ -70,10 +70,23 @@ def browser():
 
 @pytest.fixture(scope="module")
 def record():
+    """The moves and Run All times of this worker's chapters; at the end they join those the other worker wrote in
+    the same run (``RESULTS`` holds the run's id), under a lock, so the file holds every chapter of the run."""
+    import fcntl
+
     data = {"moves": [], "run_all": {}}
     yield data
     RESULTS.parent.mkdir(parents=True, exist_ok=True)
-    RESULTS.write_text(json.dumps(data, indent=1))
+    run = os.environ.get("PYTEST_XDIST_TESTRUNUID", "")
+    with open(RESULTS.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            earlier = json.loads(RESULTS.read_text()) if RESULTS.is_file() else {}
+        except ValueError:
+            earlier = {}
+        if run and earlier.get("run") == run:
+            data = {"moves": earlier["moves"] + data["moves"], "run_all": {**earlier["run_all"], **data["run_all"]}}
+        RESULTS.write_text(json.dumps({"run": run, **data}, indent=1))
     print("\n" + latency_table(data))
 
 
