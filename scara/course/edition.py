@@ -170,8 +170,8 @@ def executed_notebooks(root: Path = ROOT, cache: Path | None = None) -> dict[str
         needs = solution_dependencies(nb)
         if needs:
             k, names = next(iter(needs.items()))
-            raise ScaraError(f"{page.name}: cell {k + 1} reads {', '.join(sorted(names))}, which only a solution's cell "
-                             f"defines: the student edition (no solution cells) cannot keep the book's outputs")
+            raise ScaraError(f"{page.name}: cell {k + 1} reads {', '.join(sorted(names))}, which only a solution's "
+                             f"cell defines: the student edition (no solution cells) cannot keep the book's outputs")
         out[page.name] = nb
     return out
 
