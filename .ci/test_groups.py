@@ -33,7 +33,6 @@ def nodeid(classname: str, name: str) -> str | None:
     """pytest's node id of a JUnit test case (``tests/book/test_browser.py::test_x[a]``,
     ``book/01_kinematics.ipynb::Cell 3``), or None for the package's doctests (their module's file cannot be told
     from the report)."""
-    name = name.split("@", 1)[0]            # the xdist group pytest-xdist appends to a node id
     parts = classname.split(".")
     if parts[0] == "tests":
         return "/".join(parts) + ".py::" + name
